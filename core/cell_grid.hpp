@@ -1,0 +1,134 @@
+// Cell binning for neighbour search: grains are counting-sorted by cell over their bounding
+// box, so after reordering by order() every cell is a contiguous index range.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/dim.hpp"
+
+namespace granjet {
+
+template <int D>
+class CellGrid {
+ public:
+  // Bins `positions` into cells with edges of at least `min_edge`. The edges grow when the box
+  // would need more than kMaxCellsPerGrain cells per grain (a few scattered grains far away
+  // must not allocate a huge empty grid); larger cells stay correct, only slower.
+  void build(std::span<const Vec<D>> positions, double min_edge) {
+    Vec<D> lo = Vec<D>::Constant(0.0), hi = Vec<D>::Constant(0.0);
+    if (!positions.empty()) lo = hi = positions[0];
+    for (const Vec<D>& x : positions) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+    const Vec<D> extent = (hi - lo).cwiseMax(min_edge);
+    double edge = min_edge;
+    const double max_cells = kMaxCellsPerGrain * std::max<std::size_t>(positions.size(), 1);
+    while (cell_count(extent, edge) > max_cells) edge *= 1.25;
+    lo_ = lo;
+    inv_edge_ = 1.0 / edge;
+    total_ = 1;
+    for (int d = 0; d < D; ++d) {
+      dims_[d] = std::max(1, static_cast<int>(extent[d] * inv_edge_));
+      total_ *= dims_[d];
+    }
+    // Cells are at least `edge` wide: dims_ rounds down.
+    cell_of_.resize(positions.size());
+    start_.assign(total_ + 1, 0);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      cell_of_[i] = cell_index(positions[i]);
+      ++start_[cell_of_[i] + 1];
+    }
+    for (std::size_t c = 0; c < total_; ++c) start_[c + 1] += start_[c];
+    order_.resize(positions.size());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      order_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+  }
+
+  // Grain indices sorted by cell (stable within a cell).
+  std::span<const std::uint32_t> order() const { return order_; }
+  // Grains of cell c are order()[start(c)] .. order()[start(c+1)-1].
+  std::uint32_t start(std::size_t c) const { return start_[c]; }
+  std::size_t cells() const { return total_; }
+  const std::array<int, D>& dims() const { return dims_; }
+
+  std::array<int, D> coords(std::size_t c) const {
+    std::array<int, D> q;
+    for (int d = 0; d < D; ++d) {
+      q[d] = static_cast<int>(c % dims_[d]);
+      c /= dims_[d];
+    }
+    return q;
+  }
+
+  // The neighbour cells of c that come after it in the half stencil (each cell pair once).
+  template <class Visit>
+  void for_each_forward_neighbour(std::size_t c, Visit&& visit) const {
+    const std::array<int, D> q = coords(c);
+    for (const auto& off : forward_offsets()) {
+      std::size_t linear = 0, stride = 1;
+      bool inside = true;
+      for (int d = 0; d < D; ++d) {
+        const int k = q[d] + off[d];
+        inside = inside && k >= 0 && k < dims_[d];
+        linear += static_cast<std::size_t>(k) * stride;
+        stride *= dims_[d];
+      }
+      if (inside) visit(linear);
+    }
+  }
+
+ private:
+  static constexpr double kMaxCellsPerGrain = 16.0;
+
+  static double cell_count(const Vec<D>& extent, double edge) {
+    double n = 1.0;
+    for (int d = 0; d < D; ++d) n *= std::max(1.0, std::floor(extent[d] / edge));
+    return n;
+  }
+
+  std::uint32_t cell_index(const Vec<D>& x) const {
+    std::size_t linear = 0, stride = 1;
+    for (int d = 0; d < D; ++d) {
+      const int k = std::clamp(static_cast<int>((x[d] - lo_[d]) * inv_edge_), 0, dims_[d] - 1);
+      linear += static_cast<std::size_t>(k) * stride;
+      stride *= dims_[d];
+    }
+    return static_cast<std::uint32_t>(linear);
+  }
+
+  // Offsets in {-1,0,1}^D whose last non-zero component is +1: half of the 3^D - 1 neighbours.
+  static const std::vector<std::array<int, D>>& forward_offsets() {
+    static const std::vector<std::array<int, D>> offsets = [] {
+      std::vector<std::array<int, D>> out;
+      std::array<int, D> o;
+      for (int n = 0; n < static_cast<int>(std::pow(3, D)); ++n) {
+        int rest = n, last_nonzero = 0;
+        for (int d = 0; d < D; ++d) {
+          o[d] = rest % 3 - 1;
+          rest /= 3;
+          if (o[d] != 0) last_nonzero = o[d];
+        }
+        if (last_nonzero == 1) out.push_back(o);
+      }
+      return out;
+    }();
+    return offsets;
+  }
+
+  Vec<D> lo_ = Vec<D>::Zero();
+  double inv_edge_ = 1.0;
+  std::array<int, D> dims_{};
+  std::size_t total_ = 0;
+  std::vector<std::uint32_t> cell_of_;
+  std::vector<std::uint32_t> start_;
+  std::vector<std::uint32_t> order_;
+};
+
+}  // namespace granjet

@@ -1,0 +1,51 @@
+// Dimension traits: every difference between 2D and 3D lives here, not in kernels.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
+#include <numbers>
+
+namespace granjet {
+
+template <int D>
+struct Dim;
+
+template <>
+struct Dim<2> {
+  static constexpr int kDim = 2;
+  static constexpr int kJetAxis = 0;  // the jet moves along -x onto the target line x = 0
+  using Vec = Eigen::Vector2d;
+  using Spin = double;  // angular velocity about the out-of-plane axis
+  // Moment of inertia of a solid disk: I = 1/2 m R^2 (spec §2).
+  static constexpr double kInertiaFactor = 0.5;
+  static double volume(double radius) { return std::numbers::pi * radius * radius; }
+  static Spin zero_spin() { return 0.0; }
+  // 2D cross products: the z component of a x b, and w x r for a spin along z.
+  static Spin cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
+  static Vec spin_cross(Spin w, const Vec& r) { return Vec(-w * r.y(), w * r.x()); }
+  static double spin_dot(Spin a, Spin b) { return a * b; }
+};
+
+template <>
+struct Dim<3> {
+  static constexpr int kDim = 3;
+  static constexpr int kJetAxis = 2;  // the jet moves along -z onto the target plane z = 0
+  using Vec = Eigen::Vector3d;
+  using Spin = Eigen::Vector3d;
+  // Moment of inertia of a solid sphere: I = 2/5 m R^2 (spec §2).
+  static constexpr double kInertiaFactor = 0.4;
+  static double volume(double radius) {
+    return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+  }
+  static Spin zero_spin() { return Spin::Zero(); }
+  static Spin cross(const Vec& a, const Vec& b) { return a.cross(b); }
+  static Vec spin_cross(const Spin& w, const Vec& r) { return w.cross(r); }
+  static double spin_dot(const Spin& a, const Spin& b) { return a.dot(b); }
+};
+
+template <int D>
+using Vec = typename Dim<D>::Vec;
+template <int D>
+using Spin = typename Dim<D>::Spin;
+
+}  // namespace granjet

@@ -1,0 +1,173 @@
+#include "core/initial_state.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/random.hpp"
+
+namespace granjet {
+namespace {
+
+constexpr double kWallGrainDiameter = 1.0;
+
+template <class T>
+bool is_complete(const std::vector<T>& sites, std::int64_t n) {
+  return static_cast<std::int64_t>(sites.size()) == n;
+}
+
+// Jet lattice sites come layer by layer away from the target; each survives the random removal
+// with probability phi~0 [spec §5], and the first N survivors make the jet.
+// 3D: fcc with nearest-neighbour distance `spacing`, cut to a cylinder of diameter D_jet.
+std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) {
+  const double a = std::sqrt(2.0) * jet.spacing;  // cube edge
+  const double r_cut = 0.5 * jet.diameter;
+  const int n_xy = static_cast<int>(r_cut / a) + 2;
+  // Each half cube layer holds two of the four fcc basis sites.
+  constexpr std::array<std::array<double, 2>, 4> kBasis{{{0.0, 0.0}, {0.5, 0.5}, {0.5, 0.0},
+                                                         {0.0, 0.5}}};
+  std::vector<Vec<3>> sites;
+  for (int layer = 0; !is_complete(sites, jet.grains); ++layer) {
+    const int sub = layer % 2;
+    const double z = front + a * (layer / 2 + 0.5 * sub);
+    std::vector<std::pair<double, double>> xy;
+    for (int i = -n_xy; i <= n_xy; ++i)
+      for (int j = -n_xy; j <= n_xy; ++j)
+        for (int b = 2 * sub; b < 2 * sub + 2; ++b) {
+          const double x = a * (i + kBasis[b][0]), y = a * (j + kBasis[b][1]);
+          if (x * x + y * y <= r_cut * r_cut + 1e-9) xy.emplace_back(x, y);
+        }
+    std::sort(xy.begin(), xy.end());
+    for (const auto& [x, y] : xy) {
+      if (rng.uniform() >= jet.phi_tilde) continue;
+      sites.emplace_back(x, y, z);
+      if (is_complete(sites, jet.grains)) break;
+    }
+  }
+  return sites;
+}
+
+// 2D: triangular lattice of spacing `spacing`, rows across the strip |y| <= R_jet.
+std::vector<Vec<2>> jet_sites_2d(const JetSpec& jet, double front, Random& rng) {
+  const double s = jet.spacing;
+  const double row_height = s * std::sqrt(3.0) / 2.0;
+  const double half_width = 0.5 * jet.diameter;
+  const int n_y = static_cast<int>(half_width / s) + 2;
+  std::vector<Vec<2>> sites;
+  for (int row = 0; !is_complete(sites, jet.grains); ++row) {
+    const double offset = 0.5 * s * (row % 2);
+    for (int c = -n_y; c <= n_y; ++c) {
+      const double y = c * s + offset;
+      if (std::abs(y) > half_width + 1e-9 || rng.uniform() >= jet.phi_tilde) continue;
+      sites.emplace_back(front + row * row_height, y);
+      if (is_complete(sites, jet.grains)) break;
+    }
+  }
+  return sites;
+}
+
+// Target grains [spec §4]: a touching triangular layer covering the disk of diameter D_tar in
+// the plane z = 0 (3D), or a touching row covering |y| <= R_tar on x = 0 (2D).
+std::vector<Vec<3>> wall_sites_3d(double diameter) {
+  const double r_tar = 0.5 * diameter;
+  const double h = kWallGrainDiameter * std::sqrt(3.0) / 2.0;
+  const int n_rows = static_cast<int>(r_tar / h) + 2;
+  std::vector<Vec<3>> sites;
+  for (int r = -n_rows; r <= n_rows; ++r)
+    for (int c = -n_rows - 2; c <= n_rows + 2; ++c) {
+      const double x = (c + 0.5 * ((r % 2 + 2) % 2)) * kWallGrainDiameter;
+      const double y = r * h;
+      if (x * x + y * y <= r_tar * r_tar + 1e-9) sites.emplace_back(x, y, 0.0);
+    }
+  return sites;
+}
+
+std::vector<Vec<2>> wall_sites_2d(double diameter) {
+  const int n = static_cast<int>(std::floor(0.5 * diameter / kWallGrainDiameter + 1e-9));
+  std::vector<Vec<2>> sites;
+  for (int c = -n; c <= n; ++c) sites.emplace_back(0.0, c * kWallGrainDiameter);
+  return sites;
+}
+
+// Grain diameters: all d, or exactly half d and half small_diameter in random order.
+std::vector<double> jet_diameters(const JetSpec& jet, Random& rng) {
+  std::vector<double> diameters(jet.grains, 1.0);
+  if (jet.dispersity == Dispersity::kBi) {
+    std::fill(diameters.begin() + jet.grains / 2, diameters.end(), jet.small_diameter);
+    rng.shuffle(diameters);
+  }
+  return diameters;
+}
+
+template <int D>
+double grain_mass(const JetSpec& jet, double diameter) {
+  return jet.mass_by_volume ? std::pow(diameter, D) : 1.0;
+}
+
+template <int D>
+Particles<D> build_jet(const Scene& scene) {
+  Random rng(scene.run.seed);
+  const double front = 0.5 * kWallGrainDiameter + scene.jet.gap + 0.5;
+  std::vector<Vec<D>> sites;
+  std::vector<Vec<D>> wall;
+  if constexpr (D == 3) {
+    sites = jet_sites_3d(scene.jet, front, rng);
+    wall = wall_sites_3d(scene.wall.diameter);
+  } else {
+    sites = jet_sites_2d(scene.jet, front, rng);
+    wall = wall_sites_2d(scene.wall.diameter);
+  }
+  const std::vector<double> diameters = jet_diameters(scene.jet, rng);
+  Vec<D> velocity = Vec<D>::Zero();
+  velocity[Dim<D>::kJetAxis] = -scene.jet.speed;
+  Particles<D> p;
+  GrainId id = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    // The front row sits `gap` from the target whatever the grain size: shift small grains.
+    Vec<D> x = sites[i];
+    x[Dim<D>::kJetAxis] -= 0.5 * (1.0 - diameters[i]);
+    p.add(id++, GrainKind::kFree, x, velocity, 0.5 * diameters[i],
+          grain_mass<D>(scene.jet, diameters[i]));
+  }
+  const double wall_mass = scene.wall.kind == WallKind::kFixed
+                               ? std::numeric_limits<double>::infinity()
+                               : 1.0;
+  for (const Vec<D>& x : wall)
+    p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kWallGrainDiameter, wall_mass);
+  return p;
+}
+
+// Grain 1 approaches grain 2 (at rest at the origin) along +x with the given impact parameter.
+template <int D>
+Particles<D> build_binary(const Scene& scene) {
+  const BinarySpec& b = scene.binary;
+  Vec<D> x1 = Vec<D>::Zero();
+  const double lateral = b.impact_parameter;
+  x1[0] = -std::sqrt(std::max(0.0, 1.0 - lateral * lateral)) - b.gap;
+  x1[1] = lateral;
+  Vec<D> v1 = Vec<D>::Zero();
+  v1[0] = b.speed;
+  Particles<D> p;
+  p.add(0, GrainKind::kFree, x1, v1, 0.5, 1.0);
+  p.add(1, GrainKind::kFree, Vec<D>::Zero(), Vec<D>::Zero(), 0.5, 1.0);
+  if constexpr (D == 2) {
+    p.spin()[0] = b.spin;
+  } else {
+    p.spin()[0] = Vec<3>(0.0, 0.0, b.spin);
+  }
+  return p;
+}
+
+}  // namespace
+
+template <int D>
+Particles<D> build_initial_state(const Scene& scene) {
+  return scene.kind == SceneKind::kBinary ? build_binary<D>(scene) : build_jet<D>(scene);
+}
+
+template Particles<2> build_initial_state<2>(const Scene&);
+template Particles<3> build_initial_state<3>(const Scene&);
+
+}  // namespace granjet

@@ -1,0 +1,93 @@
+// The scene as plain data: everything a run needs, in the units of the spec (d, m, u0).
+// Parsing lives in app/ (scene_file); building the initial grains in core/initial_state.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace granjet {
+
+enum class SceneKind { kJet, kBinary };
+enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
+enum class WallKind { kTethered, kFixed };
+enum class Dispersity { kMono, kBi };
+
+struct ContactSpec {
+  double restitution = 0.75;   // e, binary restitution (spec §2)
+  double contact_time = 0.1;   // t_c in d/u0
+  double friction = 0.2;       // mu_p
+  double spring_ratio = 0.2;   // k_t / k_n
+  double damping_ratio = 0.5;  // eta_t / eta_n
+};
+
+struct RunSpec {
+  double t_end = 100.0;
+  double dt = 0.0;  // 0: the study's dt = 0.02 t_c [spec §3]
+  IntegratorKind integrator = IntegratorKind::kAdamsBashforth2;
+  std::uint64_t seed = 1;
+  double skin = 0.3;          // Verlet skin in d
+  double max_overlap = 0.5;   // blow-up when overlap exceeds this fraction of the smaller radius
+  double progress_interval = 1.0;  // sim time between progress rows
+};
+
+struct JetSpec {
+  double diameter = 10.0;   // D_jet (3D) or strip width 2 R_jet (2D)
+  double phi_tilde = 0.9;   // fraction of lattice sites kept [spec §5]
+  std::int64_t grains = 20000;
+  double spacing = 1.0;     // lattice nearest-neighbour distance (fcc 1.0, 2D triangular 1.1)
+  Dispersity dispersity = Dispersity::kMono;
+  double small_diameter = 0.8;  // bidisperse: the small grains' diameter (large = 1)
+  double speed = 1.0;       // u0
+  double gap = 1.0;         // surface gap between the jet front and the target grains
+  bool mass_by_volume = false;  // false: every grain has mass m (the study's convention)
+};
+
+struct WallSpec {
+  WallKind kind = WallKind::kTethered;
+  double diameter = 22.0;   // D_tar (3D disk) or 2 R_tar (2D segment)
+  double spring = 10.0;     // k_w in m u0^2/d^2
+  double damping_ratio = 5.0;  // eta_w / eta_n
+};
+
+struct BinarySpec {
+  double speed = 1.0;             // approach speed of grain 1 towards grain 2 (at rest)
+  double impact_parameter = 0.0;  // lateral offset in d (0 = head-on)
+  double gap = 0.0537;            // initial surface gap
+  double spin = 0.0;              // initial spin of grain 1 about z (the collision plane is x-y)
+};
+
+// Grains of the jet that leave this region are removed and counted: farther than `radius` from
+// the jet axis, or more than `below` behind the target plane.
+struct RegionSpec {
+  double radius = 44.0;
+  double below = 10.0;
+};
+
+struct OutputSpec {
+  double interval = 1.0;  // sim time between stored frames; 0 = initial and final only
+};
+
+struct Scene {
+  std::string name = "scene";
+  SceneKind kind = SceneKind::kJet;
+  int dimension = 3;
+  ContactSpec contact;
+  RunSpec run;
+  JetSpec jet;
+  WallSpec wall;
+  BinarySpec binary;
+  RegionSpec region;
+  OutputSpec output;
+
+  double dt() const { return run.dt > 0.0 ? run.dt : 0.02 * contact.contact_time; }
+  bool frictional() const { return contact.friction > 0.0; }
+  // Without friction no tangential force acts, so neither spins nor contact history matter.
+  bool needs_rotation() const { return frictional(); }
+  bool needs_history() const { return frictional(); }
+  bool has_wall() const { return kind == SceneKind::kJet; }
+  bool monodisperse() const {
+    return kind == SceneKind::kBinary || jet.dispersity == Dispersity::kMono;
+  }
+};
+
+}  // namespace granjet

@@ -1,0 +1,61 @@
+// The backend-neutral interface. Virtual per call, never per contact or event: time and
+// momentum transfer are the common currency through which analysis sees either backend.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/particles.hpp"
+
+namespace granjet {
+
+// Momentum handed from grain j to grain i, with both positions at the moment of transfer, so
+// the analysis can apportion the contact stress along the segment r_i -> r_j [C.31]-[C.33].
+template <int D>
+struct PairImpulse {
+  GrainId i = 0;
+  GrainId j = 0;
+  Vec<D> position_i;
+  Vec<D> position_j;
+  Vec<D> impulse;  // on i from j
+};
+
+struct SimStats {
+  std::int64_t steps = 0;          // DEM time steps (0 for event-driven)
+  std::int64_t particle_steps = 0; // sum over steps of the grains integrated (free grains)
+  std::int64_t contacts = 0;       // contacts at the last step
+  std::int64_t neighbour_rebuilds = 0;
+  std::int64_t removed = 0;        // grains that left the region and were removed
+  std::int64_t events = 0;         // event-driven only
+  std::int64_t collisions = 0;
+  std::int64_t cell_crossings = 0;
+};
+
+struct EnergyBalance {
+  double kinetic = 0.0;      // translational, free and wall grains
+  double rotational = 0.0;
+  double elastic = 0.0;      // contact and tether springs
+  double removed = 0.0;      // carried away by removed grains
+  double dissipated = 0.0;   // initial total minus all of the above
+  double total() const { return kinetic + rotational + elastic; }
+};
+
+template <int D>
+class Simulator {
+ public:
+  virtual ~Simulator() = default;
+  virtual std::string_view backend() const = 0;
+  // Advances the state to time t (time-stepped backends stop at the first step at or after t).
+  // Throws BlowUpError on a numerical blow-up.
+  virtual void advance_to(double t) = 0;
+  virtual double time() const = 0;
+  virtual const Particles<D>& particles() const = 0;
+  // Appends the momentum transfers since the last call (soft DEM: the current pair forces
+  // times the time since the last call, a sampled estimate; event-driven: every impulse).
+  virtual void collect_transfers(std::vector<PairImpulse<D>>& out) = 0;
+  virtual SimStats stats() const = 0;
+  virtual EnergyBalance energy() const = 0;
+};
+
+}  // namespace granjet
