@@ -1,0 +1,22 @@
+// Linear spring-dashpot coefficients from the scene's (e, t_c) [3.4]-[3.5].
+#pragma once
+
+#include "core/scene.hpp"
+
+namespace granjet::dem {
+
+// All in the spec's units (d, m, u0). The dashpots are rates: the damping force is
+// m * eta * (overlap rate) with m the grain mass unit, whatever the partner [spec §2].
+struct ContactCoefficients {
+  double kn = 0.0;     // normal spring k_n
+  double eta_n = 0.0;  // normal dashpot rate
+  double kt = 0.0;     // tangential spring k_t = spring_ratio k_n
+  double eta_t = 0.0;  // tangential dashpot rate eta_t = damping_ratio eta_n
+  double mu = 0.0;     // Coulomb friction mu_p
+};
+
+// [3.4] t_c = pi / sqrt(2 k_n/m - eta_n^2) and [3.5] e = exp(-t_c eta_n), for two grains of
+// mass m = 1, solved for (k_n, eta_n).
+ContactCoefficients contact_coefficients(const ContactSpec& spec);
+
+}  // namespace granjet::dem

@@ -1,0 +1,75 @@
+// The soft-sphere contact law [3.1]-[3.3]: linear spring-dashpot in the normal direction,
+// tangential spring-dashpot with Coulomb sliding. A small evaluator for the one pair loop; its
+// static traits let the loop drop history and rotation when the scene is frictionless.
+#pragma once
+
+#include <cmath>
+
+#include "core/dim.hpp"
+#include "soft_dem/contact_coefficients.hpp"
+
+namespace granjet::dem {
+
+// Geometry of one contact between grains i and j: n points from j to i, the lever arms reach
+// the common contact point on the line of centres (l_i + l_j = |r_i - r_j|), so the tangential
+// force conserves angular momentum exactly.
+template <int D>
+struct ContactGeometry {
+  Vec<D> n;
+  double overlap;
+  double lever_i;
+  double lever_j;
+};
+
+template <int D>
+inline ContactGeometry<D> contact_geometry(const Vec<D>& r_ij, double dist, double radius_i,
+                                           double radius_j) {
+  const double overlap = radius_i + radius_j - dist;
+  return {r_ij / dist, overlap, radius_i - 0.5 * overlap, radius_j - 0.5 * overlap};
+}
+
+template <int D, bool kFriction>
+struct LinearSpringDashpot {
+  static constexpr bool kNeedsHistory = kFriction;
+  static constexpr bool kNeedsRotation = kFriction;
+
+  ContactCoefficients c;
+  double dt = 0.0;
+
+  // Force on i from j (j receives its negative). v_rel is the velocity of i's surface relative
+  // to j's at the contact point. With kAdvance the tangential history `shear` (u_t) grows by
+  // v_t dt and is reset to the Coulomb limit when sliding; without it the force is re-evaluated
+  // from the stored history (for stress sampling), which reproduces the step's force.
+  template <bool kAdvance>
+  Vec<D> force(const ContactGeometry<D>& g, const Vec<D>& v_rel, Vec<D>& shear) const {
+    const double v_n = v_rel.dot(g.n);
+    // [3.1] normal: F_n = -k_n u_n - eta_n du_n/dt with u_n = -overlap.
+    const double f_n = c.kn * g.overlap - c.eta_n * v_n;
+    Vec<D> f = f_n * g.n;
+    if constexpr (kFriction) {
+      const Vec<D> v_t = v_rel - v_n * g.n;
+      if constexpr (kAdvance) {
+        shear += dt * v_t;
+        shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
+      }
+      // [3.2] trial tangential force, [3.3] Coulomb: slide at mu_p |F_n| along the trial.
+      Vec<D> f_t = -c.kt * shear - c.eta_t * v_t;
+      const double limit = c.mu * std::abs(f_n);
+      const double f_t2 = f_t.squaredNorm();
+      if (f_t2 > limit * limit) {
+        f_t *= limit / std::sqrt(f_t2);
+        if constexpr (kAdvance) shear = -(f_t + c.eta_t * v_t) / c.kt;
+      }
+      f += f_t;
+    }
+    return f;
+  }
+
+  double elastic_energy(const ContactGeometry<D>& g, const Vec<D>& shear) const {
+    double e = 0.5 * c.kn * g.overlap * g.overlap;
+    if constexpr (kFriction) e += 0.5 * c.kt * shear.squaredNorm();
+    return e;
+  }
+};
+
+}  // namespace granjet::dem

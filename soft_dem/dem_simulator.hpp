@@ -1,0 +1,92 @@
+// The soft-sphere DEM backend: one half-neighbour-list pair loop with the contact law inlined,
+// Adams-Bashforth-2 [B.21]-[B.24] or velocity Verlet, the tethered or fixed target wall, and
+// removal of grains that leave the region. Frictionless scenes compile without contact history
+// and rotation (kFriction = false).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "core/neighbour_list.hpp"
+#include "core/scene.hpp"
+#include "core/simulator.hpp"
+#include "soft_dem/contact_law.hpp"
+#include "soft_dem/tethered_wall.hpp"
+
+namespace granjet::dem {
+
+template <int D, bool kFriction>
+class DemSimulator final : public Simulator<D> {
+ public:
+  using Law = LinearSpringDashpot<D, kFriction>;
+
+  DemSimulator(const Scene& scene, Particles<D> initial);
+
+  std::string_view backend() const override { return "soft_dem"; }
+  // Steps until time() >= t: the state moves on whole steps of dt.
+  void advance_to(double t) override;
+  double time() const override { return static_cast<double>(step_) * dt_; }
+  const Particles<D>& particles() const override { return p_; }
+  void collect_transfers(std::vector<PairImpulse<D>>& out) override;
+  SimStats stats() const override { return stats_; }
+  EnergyBalance energy() const override;
+
+  double dt() const { return dt_; }
+  const ContactCoefficients& coefficients() const { return law_.c; }
+
+ private:
+  void step();
+  void rebuild();
+  void remove_escaped();
+  void check_finite() const;
+  void compute_forces();
+  void integrate_before_forces();
+  void integrate_after_forces();
+  std::size_t index_of(GrainId id) const { return index_of_id_[id]; }
+  Vec<D> history(std::uint32_t k) const {
+    if constexpr (kFriction) return shear_[k];
+    return Vec<D>::Zero();
+  }
+  // Calls on_contact(i, j, k, geometry, v_rel) for listed pairs in contact, on_apart(k) for the
+  // others (k indexes the pair list).
+  template <class OnContact, class OnApart>
+  void for_each_contact(OnContact&& on_contact, OnApart&& on_apart) const;
+
+  Scene scene_;
+  Particles<D> p_;
+  Law law_;
+  double dt_;
+  double overlap_limit_;
+  double half_skin2_;
+  bool tethered_;
+  TetheredWall<D> wall_;
+
+  std::vector<Vec<D>> force_, force_prev_;
+  std::vector<Spin<D>> torque_, torque_prev_;
+  std::vector<double> inv_inertia_;
+  std::vector<Vec<D>> x_at_build_;
+  std::vector<std::uint32_t> index_of_id_;
+
+  CellGrid<D> grid_;
+  PairList pairs_;
+  std::vector<Vec<D>> shear_;  // u_t of each listed pair (frictional scenes only)
+
+  std::int64_t step_ = 0;
+  std::int64_t free_grains_ = 0;
+  bool needs_rebuild_ = false;
+  double removed_energy_ = 0.0;
+  double initial_energy_ = 0.0;
+  double last_collect_time_ = 0.0;
+  SimStats stats_;
+};
+
+// The factory's single point where run-time scene choices become template instantiations.
+template <int D>
+std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene);
+
+extern template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
+extern template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
+
+}  // namespace granjet::dem

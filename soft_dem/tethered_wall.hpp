@@ -1,0 +1,84 @@
+// The tethered target [spec §4]: each wall grain is tied to its initial position and to its
+// touching wall neighbours by springs k_w (rest length = initial distance) with dashpots
+// eta_w = damping_ratio * eta_n. Bonds are kept by grain id, so reordering is harmless.
+#pragma once
+
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "core/particles.hpp"
+
+namespace granjet::dem {
+
+template <int D>
+class TetheredWall {
+ public:
+  TetheredWall() = default;
+  // `spring` is k_w, `damping` the dashpot rate eta_w (force = m eta_w * velocity, m = 1).
+  TetheredWall(const Particles<D>& p, double spring, double damping)
+      : spring_(spring), damping_(damping) {
+    std::vector<std::size_t> walls;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.kind()[i] == GrainKind::kWall) walls.push_back(i);
+    for (std::size_t a : walls) anchors_.push_back({p.id()[a], p.position()[a]});
+    for (std::size_t a = 0; a < walls.size(); ++a)
+      for (std::size_t b = a + 1; b < walls.size(); ++b) {
+        const std::size_t i = walls[a], j = walls[b];
+        const double rest = (p.position()[i] - p.position()[j]).norm();
+        const double touching = p.radius()[i] + p.radius()[j];
+        if (rest <= touching * (1.0 + 1e-6)) bonds_.push_back({p.id()[i], p.id()[j], rest});
+      }
+  }
+
+  std::size_t bonds() const { return bonds_.size(); }
+
+  // Adds the tether forces; index_of maps a grain id to its current index.
+  template <class IndexOf>
+  void add_forces(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force) const {
+    const auto x = p.position();
+    const auto v = p.velocity();
+    for (const Anchor& a : anchors_) {
+      const std::size_t i = index_of(a.id);
+      force[i] -= spring_ * (x[i] - a.position) + damping_ * v[i];
+    }
+    for (const Bond& b : bonds_) {
+      const std::size_t i = index_of(b.i), j = index_of(b.j);
+      const Vec<D> r = x[i] - x[j];
+      const double dist = r.norm();
+      const Vec<D> n = r / dist;
+      const double f = -spring_ * (dist - b.rest) - damping_ * (v[i] - v[j]).dot(n);
+      force[i] += f * n;
+      force[j] -= f * n;
+    }
+  }
+
+  template <class IndexOf>
+  double elastic_energy(const Particles<D>& p, IndexOf&& index_of) const {
+    const auto x = p.position();
+    double e = 0.0;
+    for (const Anchor& a : anchors_)
+      e += 0.5 * spring_ * (x[index_of(a.id)] - a.position).squaredNorm();
+    for (const Bond& b : bonds_) {
+      const double stretch = (x[index_of(b.i)] - x[index_of(b.j)]).norm() - b.rest;
+      e += 0.5 * spring_ * stretch * stretch;
+    }
+    return e;
+  }
+
+ private:
+  struct Anchor {
+    GrainId id;
+    Vec<D> position;
+  };
+  struct Bond {
+    GrainId i, j;
+    double rest;
+  };
+  double spring_ = 0.0;
+  double damping_ = 0.0;
+  std::vector<Anchor> anchors_;
+  std::vector<Bond> bonds_;
+};
+
+}  // namespace granjet::dem
