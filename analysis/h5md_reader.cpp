@@ -1,0 +1,225 @@
+#include "analysis/h5md_reader.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <span>
+#include <stdexcept>
+#include <type_traits>
+
+#include "analysis/hdf5_handle.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+constexpr const char* kParameters = "/parameters/granjet";
+constexpr const char* kScene = "/parameters/granjet/scene";
+constexpr const char* kFrameStep = "/particles/all/position/step";
+constexpr const char* kFrameTime = "/particles/all/position/time";
+constexpr const char* kFrameGrains = "/observables/frame_grains/value";
+constexpr const char* kPosition = "/particles/all/position/value";
+constexpr const char* kVelocity = "/particles/all/velocity/value";
+constexpr const char* kRadius = "/particles/all/radius/value";
+constexpr const char* kId = "/particles/all/id/value";
+constexpr const char* kObservableStep = "/observables/kinetic_energy/step";
+
+template <class T>
+hid_t native_type() {
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>);
+  return std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64;
+}
+
+// A granjet H5MD file opened read-only, with the few typed reads the callers need.
+class H5mdInput {
+ public:
+  explicit H5mdInput(const std::filesystem::path& file) : ctx_(file) {
+    if (H5Fis_hdf5(file.c_str()) <= 0) {
+      throw std::runtime_error("'" + file.string() + "' is not a readable HDF5 file");
+    }
+    file_ = ctx_.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open",
+                     "the HDF5 file");
+    // Both are required by granjet's layout; other H5MD writers lack the second.
+    for (const char* group : {"/h5md", kParameters}) {
+      if (H5Lexists(file_.get(), group, H5P_DEFAULT) <= 0) {
+        throw std::runtime_error("'" + file.string() + "' is not a granjet H5MD file (no " + group +
+                                 ")");
+      }
+    }
+  }
+
+  [[noreturn]] void fail(std::string_view action, std::string_view object) const {
+    ctx_.fail(action, object);
+  }
+
+  void read_ints(const char* object, const char* name, std::span<int> out) const {
+    const std::string what = std::string(object) + " attribute " + name;
+    const H5Handle attribute = open_attribute(object, name);
+    const H5Handle space = ctx_.own(H5Aget_space(attribute.get()), H5Sclose, "query", what);
+    if (H5Sget_simple_extent_npoints(space.get()) != static_cast<hssize_t>(out.size())) {
+      fail("find " + std::to_string(out.size()) + " value(s) in", what);
+    }
+    ctx_.check(H5Aread(attribute.get(), H5T_NATIVE_INT, out.data()), "read", what);
+  }
+
+  std::string string_attribute(const char* object, const char* name) const {
+    const std::string what = std::string(object) + " attribute " + name;
+    const H5Handle attribute = open_attribute(object, name);
+    const H5Handle type = ctx_.own(H5Aget_type(attribute.get()), H5Tclose, "query", what);
+    const H5Handle space = ctx_.own(H5Aget_space(attribute.get()), H5Sclose, "query", what);
+    return fixed_string(type.get(), space.get(), what,
+                        [&](char* buffer) { return H5Aread(attribute.get(), type.get(), buffer); });
+  }
+
+  std::string string_dataset(const char* name) const {
+    const OpenDataset scalar = open_dataset(name, 0);
+    const H5Handle type = ctx_.own(H5Dget_type(scalar.set.get()), H5Tclose, "query", name);
+    return fixed_string(type.get(), scalar.space.get(), name, [&](char* buffer) {
+      return H5Dread(scalar.set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+    });
+  }
+
+  // The shape of `dataset`, which must have `rank` axes.
+  std::vector<hsize_t> extent(const char* dataset, int rank) const {
+    const OpenDataset open = open_dataset(dataset, rank);
+    std::vector<hsize_t> dims(rank);
+    ctx_.check(H5Sget_simple_extent_dims(open.space.get(), dims.data(), nullptr), "query", dataset);
+    return dims;
+  }
+
+  // Reads the block [start, start + count) of `dataset`, densely packed, into `out`.
+  void read(const char* dataset, const std::vector<hsize_t>& start,
+            const std::vector<hsize_t>& count, hid_t type, void* out) const {
+    if (std::find(count.begin(), count.end(), 0) != count.end()) return;
+    const int rank = static_cast<int>(count.size());
+    const OpenDataset open = open_dataset(dataset, rank);
+    ctx_.check(H5Sselect_hyperslab(open.space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                                   count.data(), nullptr),
+               "select in", dataset);
+    const H5Handle memory = ctx_.own(H5Screate_simple(rank, count.data(), nullptr), H5Sclose,
+                                     "create a dataspace for", dataset);
+    ctx_.check(H5Dread(open.set.get(), type, memory.get(), open.space.get(), H5P_DEFAULT, out),
+               "read", dataset);
+  }
+
+  template <class T>
+  T element(const char* dataset, hsize_t index) const {
+    T value{};
+    read(dataset, {index}, {1}, native_type<T>(), &value);
+    return value;
+  }
+
+ private:
+  H5Handle open_attribute(const char* object, const char* name) const {
+    return ctx_.own(H5Aopen_by_name(file_.get(), object, name, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                    "open", std::string(object) + " attribute " + name);
+  }
+  struct OpenDataset {
+    H5Handle set;
+    H5Handle space;
+  };
+  // Opens `name`, whose dataspace must have `rank` axes (0: scalar).
+  OpenDataset open_dataset(const char* name, int rank) const {
+    OpenDataset open{ctx_.own(H5Dopen2(file_.get(), name, H5P_DEFAULT), H5Dclose, "open", name),
+                     {}};
+    open.space = ctx_.own(H5Dget_space(open.set.get()), H5Sclose, "query", name);
+    if (H5Sget_simple_extent_ndims(open.space.get()) != rank) {
+      fail("find " + std::to_string(rank) + " axes in", name);
+    }
+    return open;
+  }
+  // granjet writes only scalar, fixed-length, NUL-terminated strings; reading anything else
+  // into one buffer would overrun it.
+  template <class Read>
+  std::string fixed_string(hid_t type, hid_t space, const std::string& what, Read read) const {
+    if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) != 0 ||
+        H5Sget_simple_extent_npoints(space) != 1) {
+      fail("read a fixed-length string from", what);
+    }
+    std::string value(H5Tget_size(type), '\0');
+    ctx_.check(read(value.data()), "read", what);
+    value.erase(std::find(value.begin(), value.end(), '\0'), value.end());
+    return value;
+  }
+
+  H5Context ctx_;
+  H5Handle file_;
+};
+
+}  // namespace
+
+FileSummary read_summary(const std::filesystem::path& file) {
+  const H5mdInput in(file);
+  FileSummary summary;
+  in.read_ints("/h5md", "version", summary.h5md_version);
+  summary.creator = in.string_attribute("/h5md/creator", "name");
+  summary.creator_version = in.string_attribute("/h5md/creator", "version");
+  summary.backend = in.string_attribute(kParameters, "backend");
+  summary.status = in.string_attribute(kParameters, "status");
+  in.read_ints(kParameters, "dimension", std::span(&summary.dimension, 1));
+  summary.scene_ini = in.string_dataset(kScene);
+  summary.frames = in.extent(kFrameStep, 1)[0];
+  summary.max_grains = in.extent(kPosition, 3)[1];
+  summary.observable_rows = in.extent(kObservableStep, 1)[0];
+  if (summary.frames > 0) {
+    summary.first_time = in.element<double>(kFrameTime, 0);
+    summary.last_time = in.element<double>(kFrameTime, summary.frames - 1);
+    summary.last_step = in.element<std::int64_t>(kFrameStep, summary.frames - 1);
+  }
+  return summary;
+}
+
+void print_summary(const FileSummary& summary, std::ostream& out) {
+  out << summary.creator << ' ' << summary.creator_version << ", " << summary.backend
+      << " backend, " << summary.dimension << "D (H5MD " << summary.h5md_version[0] << '.'
+      << summary.h5md_version[1] << ")\n"
+      << "status: " << summary.status << '\n'
+      << "frames: " << summary.frames << ", up to " << summary.max_grains << " grains";
+  if (summary.frames > 0) {
+    out << ", t = " << summary.first_time << " .. " << summary.last_time << " (last step "
+        << summary.last_step << ')';
+  }
+  out << "\nobservables: " << summary.observable_rows << " rows\n"
+      << "scene: " << std::count(summary.scene_ini.begin(), summary.scene_ini.end(), '\n')
+      << " lines of INI stored\n";
+}
+
+template <int D>
+Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
+  // Vectors are read straight into the storage of std::vector<Vec<D>>.
+  static_assert(sizeof(Vec<D>) == D * sizeof(double));
+  const H5mdInput in(file);
+  int dimension = 0;
+  in.read_ints(kParameters, "dimension", std::span(&dimension, 1));
+  if (dimension != D) {
+    throw std::runtime_error("'" + file.string() + "' holds " + std::to_string(dimension) +
+                             "D grains, not " + std::to_string(D) + "D");
+  }
+  const hsize_t frames = in.extent(kFrameStep, 1)[0];
+  if (index >= frames) {
+    throw std::runtime_error("'" + file.string() + "' has " + std::to_string(frames) +
+                             " frames, no frame " + std::to_string(index));
+  }
+  const std::int64_t grains = in.element<std::int64_t>(kFrameGrains, index);
+  const hsize_t max_grains = in.extent(kPosition, 3)[1];
+  if (grains < 0 || static_cast<hsize_t>(grains) > max_grains) {
+    in.fail("use the grain count " + std::to_string(grains) + " in", kFrameGrains);
+  }
+  const auto n = static_cast<hsize_t>(grains);
+  Frame<D> frame;
+  frame.step = in.element<std::int64_t>(kFrameStep, index);
+  frame.time = in.element<double>(kFrameTime, index);
+  frame.id.resize(n);
+  frame.position.resize(n);
+  frame.velocity.resize(n);
+  frame.radius.resize(n);
+  in.read(kId, {index, 0}, {1, n}, H5T_NATIVE_INT64, frame.id.data());
+  in.read(kPosition, {index, 0, 0}, {1, n, D}, H5T_NATIVE_DOUBLE, frame.position.data());
+  in.read(kVelocity, {index, 0, 0}, {1, n, D}, H5T_NATIVE_DOUBLE, frame.velocity.data());
+  in.read(kRadius, {index, 0}, {1, n}, H5T_NATIVE_DOUBLE, frame.radius.data());
+  return frame;
+}
+
+template Frame<2> read_frame<2>(const std::filesystem::path&, std::size_t);
+template Frame<3> read_frame<3>(const std::filesystem::path&, std::size_t);
+
+}  // namespace granjet::analysis

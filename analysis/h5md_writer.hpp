@@ -1,0 +1,67 @@
+// Writes a run as an H5MD 1.1 file (https://www.nongnu.org/h5md/h5md.html) plus an XDMF sidecar
+// for ParaView. The file is written as <path>.partial and renamed to <path> only by finish(), so
+// a file under its final name always holds a complete run.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "core/particles.hpp"
+
+namespace granjet::analysis {
+
+struct RunMetadata {
+  std::string author = "granjet user";
+  std::string creator = "granjet";
+  std::string creator_version;  // e.g. "0.1.0"
+  std::string backend;          // "soft_dem" | "event_driven"
+  std::string scene_ini;        // the full resolved scene as INI text, so the run can be redone
+  int dimension = 3;            // must match the writer's D
+};
+
+struct Observables {
+  double kinetic_energy = 0;
+  double rotational_energy = 0;
+  double elastic_energy = 0;
+  double energy_dissipated = 0;
+  std::int64_t grains = 0;
+};
+
+namespace detail {
+class H5mdFile;  // the dimension-free part; defined in h5md_writer.cpp to keep <hdf5.h> private
+}  // namespace detail
+
+template <int D>
+class H5mdWriter {
+ public:
+  // Creates `path` + ".partial" (never `path` itself). max_grains (> 0) is the largest number of
+  // grains any frame will hold: grains may only be removed during a run. Throws
+  // std::runtime_error naming the file when it cannot be created.
+  H5mdWriter(std::filesystem::path path, const RunMetadata& meta, std::size_t max_grains);
+  H5mdWriter(const H5mdWriter&) = delete;
+  H5mdWriter& operator=(const H5mdWriter&) = delete;
+  // If neither finish() nor abandon() ran: closes the file and leaves it as .partial, with
+  // status "running" and every frame written so far.
+  ~H5mdWriter();
+
+  // Stores the grains sorted by id and flushes, so the frame survives a later crash.
+  void write_frame(std::int64_t step, double time, const Particles<D>& particles);
+  // Appends one row; it becomes durable with the next frame's flush or at the end.
+  void write_observables(std::int64_t step, double time, const Observables& obs);
+  // Marks the run complete, closes the file, writes the .xmf sidecar next to the final file
+  // and renames .partial -> path.
+  void finish();
+  // Stores `reason` as the status, closes the file and keeps it readable as .partial (no
+  // sidecar). Returns the .partial path.
+  std::filesystem::path abandon(const std::string& reason);
+
+ private:
+  std::unique_ptr<detail::H5mdFile> file_;
+};
+
+extern template class H5mdWriter<2>;
+extern template class H5mdWriter<3>;
+
+}  // namespace granjet::analysis
