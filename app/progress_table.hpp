@@ -1,0 +1,28 @@
+// The progress rows of `granjet run`: sim time, % done, grains, contacts, rate, ETA.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <iosfwd>
+
+#include "core/simulator.hpp"
+
+namespace granjet {
+
+class ProgressTable {
+ public:
+  ProgressTable(std::ostream& out, double t_end, bool quiet);
+  void row(double time, std::int64_t grains, const SimStats& stats);
+  double elapsed_seconds() const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::ostream& out_;
+  double t_end_;
+  bool quiet_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_ = start_;
+  std::int64_t last_particle_steps_ = 0;
+};
+
+}  // namespace granjet

@@ -1,0 +1,277 @@
+#include "app/scene_file.hpp"
+
+#include <boost/program_options.hpp>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace granjet {
+namespace {
+
+namespace po = boost::program_options;
+
+struct Key {
+  std::string name;
+  std::string help;  // meaning and allowed values
+  std::function<void(Scene&, const std::string&)> set;
+  std::function<std::string(const Scene&)> get;
+};
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+double parse_double(const std::string& key, const std::string& text) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+    throw InputError(key, "'" + text + "' is not a finite number");
+  return v;
+}
+
+// Allowed interval of a real key; open ends exclude the bound.
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  bool lo_open = false;
+  double hi = std::numeric_limits<double>::infinity();
+  bool hi_open = false;
+
+  bool contains(double v) const {
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  std::string describe() const {
+    const bool lo_inf = std::isinf(lo), hi_inf = std::isinf(hi);
+    if (hi_inf) return std::string(lo_open ? "> " : ">= ") + format_number(lo);
+    if (lo_inf) return std::string(hi_open ? "< " : "<= ") + format_number(hi);
+    return std::string(lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) +
+           (hi_open ? ")" : "]");
+  }
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const Range kPositive{0.0, true, kInf, false};
+const Range kNonNegative{0.0, false, kInf, false};
+
+template <class Member>
+Key real_key(std::string name, std::string meaning, Member member, Range range) {
+  const std::string help = meaning + "; allowed " + range.describe();
+  return {name, help,
+          [name, member, range](Scene& s, const std::string& text) {
+            const double v = parse_double(name, text);
+            if (!range.contains(v))
+              throw InputError(name, format_number(v) + " is outside the allowed range " +
+                                         range.describe());
+            member(s) = v;
+          },
+          [member](const Scene& s) { return format_number(member(s)); }};
+}
+
+template <class Member>
+Key integer_key(std::string name, std::string meaning, Member member, std::int64_t lo) {
+  const std::string help = meaning + "; allowed integer >= " + std::to_string(lo);
+  return {name, help,
+          [name, member, lo](Scene& s, const std::string& text) {
+            std::int64_t v = 0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || end != text.data() + text.size() || v < lo)
+              throw InputError(name, "'" + text + "' is not an integer >= " + std::to_string(lo));
+            member(s) = static_cast<std::remove_cvref_t<decltype(member(s))>>(v);
+          },
+          [member](const Scene& s) { return std::to_string(member(s)); }};
+}
+
+template <class Enum, class Member>
+Key choice_key(std::string name, std::string meaning, Member member,
+               std::vector<std::pair<std::string, Enum>> choices) {
+  std::string allowed;
+  for (const auto& [word, value] : choices) allowed += (allowed.empty() ? "" : " | ") + word;
+  return {name, meaning + "; allowed " + allowed,
+          [name, member, choices, allowed](Scene& s, const std::string& text) {
+            for (const auto& [word, value] : choices)
+              if (word == text) {
+                member(s) = value;
+                return;
+              }
+            throw InputError(name, "'" + text + "' is not one of: " + allowed);
+          },
+          [member, choices](const Scene& s) {
+            for (const auto& [word, value] : choices)
+              if (member(s) == value) return word;
+            return std::string("?");
+          }};
+}
+
+// Accessor of one scene member, usable on a const and a mutable Scene.
+#define FIELD(path) [](auto& s) -> decltype(auto) { return (s.path); }
+
+const std::vector<Key>& keys() {
+  static const std::vector<Key> table = [] {
+    std::vector<Key> k;
+    k.push_back({"scene.name", "label stored in outputs",
+                 [](Scene& s, const std::string& v) { s.name = v; },
+                 [](const Scene& s) { return s.name; }});
+    k.push_back(choice_key<SceneKind>("scene.kind", "what to build", FIELD(kind),
+                                      {{"jet", SceneKind::kJet}, {"binary", SceneKind::kBinary}}));
+    k.push_back(choice_key<int>("scene.dimension", "2 (disks) or 3 (spheres)", FIELD(dimension),
+                                {{"2", 2}, {"3", 3}}));
+    k.push_back(real_key("contact.restitution", "binary restitution coefficient e",
+                         FIELD(contact.restitution), {0.0, true, 1.0, false}));
+    k.push_back(real_key("contact.contact_time", "binary contact time t_c in d/u0",
+                         FIELD(contact.contact_time), kPositive));
+    k.push_back(real_key("contact.friction", "Coulomb friction mu_p (0: frictionless)",
+                         FIELD(contact.friction), kNonNegative));
+    k.push_back(real_key("contact.spring_ratio", "k_t / k_n", FIELD(contact.spring_ratio),
+                         kPositive));
+    k.push_back(real_key("contact.damping_ratio", "eta_t / eta_n", FIELD(contact.damping_ratio),
+                         kNonNegative));
+    k.push_back(real_key("run.t_end", "simulated time in d/u0", FIELD(run.t_end), kPositive));
+    k.push_back(real_key("run.dt", "time step (0: 0.02 t_c, the study's)", FIELD(run.dt),
+                         kNonNegative));
+    k.push_back(choice_key<IntegratorKind>(
+        "run.integrator", "time integrator", FIELD(run.integrator),
+        {{"ab2", IntegratorKind::kAdamsBashforth2}, {"verlet", IntegratorKind::kVelocityVerlet}}));
+    k.push_back(integer_key("run.seed", "random seed of the site removal", FIELD(run.seed), 0));
+    k.push_back(real_key("run.skin", "neighbour-list skin in d", FIELD(run.skin), kPositive));
+    k.push_back(real_key("run.max_overlap",
+                         "blow-up when an overlap exceeds this fraction of the smaller radius",
+                         FIELD(run.max_overlap), {0.0, true, 1.0, false}));
+    k.push_back(real_key("run.progress_interval", "sim time between progress rows",
+                         FIELD(run.progress_interval), kPositive));
+    k.push_back(real_key("jet.diameter", "D_jet (3D) or strip width 2 R_jet (2D), in d",
+                         FIELD(jet.diameter), kPositive));
+    k.push_back(real_key("jet.phi_tilde", "fraction of lattice sites kept, phi~0",
+                         FIELD(jet.phi_tilde), {0.0, true, 1.0, false}));
+    k.push_back(integer_key("jet.grains", "number of jet grains", FIELD(jet.grains), 1));
+    k.push_back(real_key("jet.spacing", "lattice nearest-neighbour distance in d",
+                         FIELD(jet.spacing), {1.0, false, kInf, false}));
+    k.push_back(choice_key<Dispersity>("jet.dispersity", "grain sizes", FIELD(jet.dispersity),
+                                       {{"mono", Dispersity::kMono}, {"bi", Dispersity::kBi}}));
+    k.push_back(real_key("jet.small_diameter", "bidisperse: diameter of the small grains",
+                         FIELD(jet.small_diameter), {0.0, true, 1.0, false}));
+    k.push_back(real_key("jet.speed", "incident speed u0", FIELD(jet.speed), kPositive));
+    k.push_back(real_key("jet.gap", "surface gap between jet front and target",
+                         FIELD(jet.gap), kNonNegative));
+    k.push_back(choice_key<bool>("jet.mass_by_volume",
+                                 "false: every grain has mass m (the study's convention)",
+                                 FIELD(jet.mass_by_volume), {{"false", false}, {"true", true}}));
+    k.push_back(choice_key<WallKind>("wall.kind", "target grains", FIELD(wall.kind),
+                                     {{"tethered", WallKind::kTethered},
+                                      {"fixed", WallKind::kFixed}}));
+    k.push_back(real_key("wall.diameter", "D_tar (3D) or 2 R_tar (2D), in d", FIELD(wall.diameter),
+                         {1.0, false, kInf, false}));
+    k.push_back(real_key("wall.spring", "tether spring k_w in m u0^2/d^2", FIELD(wall.spring),
+                         kNonNegative));
+    k.push_back(real_key("wall.damping_ratio", "tether dashpot eta_w / eta_n",
+                         FIELD(wall.damping_ratio), kNonNegative));
+    k.push_back(real_key("binary.speed", "speed of grain 1 towards grain 2", FIELD(binary.speed),
+                         kPositive));
+    k.push_back(real_key("binary.impact_parameter", "lateral offset in d (0: head-on)",
+                         FIELD(binary.impact_parameter), {0.0, false, 1.0, true}));
+    k.push_back(real_key("binary.gap", "initial surface gap in d", FIELD(binary.gap),
+                         kNonNegative));
+    k.push_back(real_key("binary.spin", "initial spin of grain 1 about z", FIELD(binary.spin),
+                         {-kInf, true, kInf, true}));
+    k.push_back(real_key("region.radius", "remove grains farther from the jet axis",
+                         FIELD(region.radius), kPositive));
+    k.push_back(real_key("region.below", "remove grains farther behind the target plane",
+                         FIELD(region.below), kPositive));
+    k.push_back(real_key("output.interval", "sim time between stored frames (0: first and last)",
+                         FIELD(output.interval), kNonNegative));
+    return k;
+  }();
+  return table;
+}
+
+#undef FIELD
+
+const Key& find_key(const std::string& name) {
+  for (const Key& k : keys())
+    if (k.name == name) return k;
+  throw InputError(name, "unknown key; see 'granjet --help' for the scene keys");
+}
+
+void apply_override(Scene& scene, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos)
+    throw InputError("--set " + assignment, "expected section.key=value");
+  find_key(assignment.substr(0, eq)).set(scene, assignment.substr(eq + 1));
+}
+
+}  // namespace
+
+Scene parse_scene(std::istream& in, const std::string& source,
+                  const std::vector<std::string>& overrides) {
+  po::options_description desc;
+  for (const Key& k : keys()) desc.add_options()(k.name.c_str(), po::value<std::string>());
+  po::parsed_options parsed(&desc);
+  try {
+    parsed = po::parse_config_file(in, desc, /*allow_unregistered=*/true);
+  } catch (const po::error& e) {
+    throw InputError(source, e.what());
+  }
+  Scene scene;
+  for (const po::option& o : parsed.options) {
+    if (o.unregistered)
+      throw InputError(o.string_key, "unknown key in " + source +
+                                         "; see 'granjet --help' for the scene keys");
+    find_key(o.string_key).set(scene, o.value.front());
+  }
+  for (const std::string& assignment : overrides) apply_override(scene, assignment);
+  validate_scene(scene);
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), "cannot open the scene file");
+  return parse_scene(in, file.string(), overrides);
+}
+
+void validate_scene(const Scene& s) {
+  if (s.dt() >= s.contact.contact_time)
+    throw InputError("run.dt", format_number(s.dt()) + " must be smaller than contact.contact_time = " +
+                                   format_number(s.contact.contact_time));
+  if (s.kind == SceneKind::kJet && s.wall.diameter < s.jet.diameter)
+    throw InputError("wall.diameter", "the target must be at least as wide as the jet (jet.diameter = " +
+                                          format_number(s.jet.diameter) + ")");
+}
+
+std::string scene_to_ini(const Scene& scene) {
+  std::map<std::string, std::vector<std::string>> sections;
+  std::vector<std::string> order;
+  for (const Key& k : keys()) {
+    const auto dot = k.name.find('.');
+    const std::string section = k.name.substr(0, dot);
+    if (!sections.count(section)) order.push_back(section);
+    std::string value = k.get(scene);
+    if (k.name == "run.dt") value = format_number(scene.dt());
+    sections[section].push_back(k.name.substr(dot + 1) + " = " + value);
+  }
+  std::ostringstream out;
+  for (const std::string& section : order) {
+    out << "[" << section << "]\n";
+    for (const std::string& line : sections[section]) out << line << "\n";
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string scene_keys_help() {
+  std::ostringstream out;
+  for (const Key& k : keys()) {
+    out << "  " << k.name;
+    out << std::string(k.name.size() < 26 ? 26 - k.name.size() : 1, ' ') << k.help << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace granjet

@@ -1,0 +1,27 @@
+// Full DEM steps on the shipped jets (Google Benchmark): particle-steps/s after impact.
+#include <benchmark/benchmark.h>
+
+#include "app/scene_file.hpp"
+#include "soft_dem/dem_simulator.hpp"
+
+namespace {
+
+// Arg: friction x 10. Fixed wall, as in the LAMMPS peer inputs.
+template <int D>
+void BM_DemJetStep(benchmark::State& state) {
+  const std::string file = std::string(GRANJET_SCENES_DIR) + (D == 3 ? "/jet3d.ini" : "/jet2d.ini");
+  const granjet::Scene scene = granjet::load_scene(
+      file, {"wall.kind=fixed", "contact.friction=" + std::to_string(state.range(0) / 10.0)});
+  auto sim = granjet::dem::make_dem_simulator<D>(scene);
+  sim->advance_to(20.0);  // the jet has hit the target: real contacts and rebuilds
+  const double dt = scene.dt();
+  const std::int64_t before = sim->stats().particle_steps;
+  for (auto _ : state) sim->advance_to(sim->time() + 100 * dt);
+  state.counters["particle_steps/s"] = benchmark::Counter(
+      static_cast<double>(sim->stats().particle_steps - before), benchmark::Counter::kIsRate);
+}
+
+}  // namespace
+
+BENCHMARK(BM_DemJetStep<3>)->Arg(2)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DemJetStep<2>)->Arg(2)->Arg(0)->Unit(benchmark::kMillisecond);
