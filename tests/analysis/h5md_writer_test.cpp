@@ -1,0 +1,254 @@
+#include "analysis/h5md_writer.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "analysis/h5md_reader.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Grain ids per frame, deliberately unsorted: the count shrinks 5 -> 4 -> 3.
+const std::vector<std::vector<GrainId>> kFrames = {{40, 7, 19, 3, 25}, {25, 3, 40, 7}, {7, 40, 3}};
+
+// Distinct per grain, per frame and per axis, so a swapped row or axis shows.
+template <int D>
+Vec<D> position_of(GrainId id, std::size_t frame) {
+  return Vec<D>::LinSpaced(D, 0.0, 1.0) + Vec<D>::Constant(static_cast<double>(id) + 0.25 * frame);
+}
+template <int D>
+Vec<D> velocity_of(GrainId id, std::size_t frame) {
+  return -0.5 * position_of<D>(id, frame);
+}
+double radius_of(GrainId id) { return 0.001 * static_cast<double>(id + 1); }
+
+template <int D>
+Particles<D> grains_of(std::size_t frame) {
+  Particles<D> particles;
+  for (GrainId id : kFrames[frame]) {
+    particles.add(id, GrainKind::kFree, position_of<D>(id, frame), velocity_of<D>(id, frame),
+                  radius_of(id), 1.0);
+  }
+  return particles;
+}
+
+RunMetadata metadata(int dimension) {
+  RunMetadata meta;
+  meta.creator_version = "0.1.0";
+  meta.backend = "soft_dem";
+  meta.scene_ini = "[scene]\nname = test\n";
+  meta.dimension = dimension;
+  return meta;
+}
+
+template <int D>
+void write_frames(H5mdWriter<D>& writer, std::size_t count) {
+  for (std::size_t k = 0; k < count; ++k) {
+    writer.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k, grains_of<D>(k));
+    writer.write_observables(100 * static_cast<std::int64_t>(k), 0.5 * k,
+                             {1.0, 2.0, 3.0, 4.0, static_cast<std::int64_t>(kFrames[k].size())});
+  }
+}
+
+template <int D>
+void expect_frames_read_back(const fs::path& file, std::size_t count) {
+  for (std::size_t k = 0; k < count; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const Frame<D> frame = read_frame<D>(file, k);
+    std::vector<GrainId> ids = kFrames[k];
+    std::sort(ids.begin(), ids.end());
+    EXPECT_EQ(frame.step, 100 * static_cast<std::int64_t>(k));
+    EXPECT_EQ(frame.time, 0.5 * k);
+    ASSERT_EQ(frame.id, ids);
+    ASSERT_EQ(frame.position.size(), ids.size());
+    ASSERT_EQ(frame.velocity.size(), ids.size());
+    ASSERT_EQ(frame.radius.size(), ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      EXPECT_EQ(frame.position[i], position_of<D>(ids[i], k)) << "grain " << ids[i];
+      EXPECT_EQ(frame.velocity[i], velocity_of<D>(ids[i], k)) << "grain " << ids[i];
+      EXPECT_EQ(frame.radius[i], radius_of(ids[i])) << "grain " << ids[i];
+    }
+  }
+}
+
+std::string contents(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path partial(fs::path file) {
+  file += ".partial";
+  return file;
+}
+
+class H5mdWriterTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        fs::temp_directory_path() / ("granjet_h5md_test_" + std::to_string(std::random_device{}()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_;
+};
+
+TEST_F(H5mdWriterTest, FinishedRunReadsBackIn3D) {
+  const fs::path file = dir_ / "run.h5";
+  {
+    H5mdWriter<3> writer(file, metadata(3), 5);
+    EXPECT_TRUE(fs::exists(partial(file)));
+    EXPECT_FALSE(fs::exists(file));
+    write_frames(writer, 3);
+    writer.finish();
+  }
+  EXPECT_TRUE(fs::exists(file));
+  EXPECT_FALSE(fs::exists(partial(file)));
+
+  const FileSummary summary = read_summary(file);
+  EXPECT_EQ(summary.h5md_version, (std::array<int, 2>{1, 1}));
+  EXPECT_EQ(summary.creator, "granjet");
+  EXPECT_EQ(summary.creator_version, "0.1.0");
+  EXPECT_EQ(summary.backend, "soft_dem");
+  EXPECT_EQ(summary.status, "complete");
+  EXPECT_EQ(summary.dimension, 3);
+  EXPECT_EQ(summary.frames, 3u);
+  EXPECT_EQ(summary.max_grains, 5u);
+  EXPECT_EQ(summary.first_time, 0.0);
+  EXPECT_EQ(summary.last_time, 1.0);
+  EXPECT_EQ(summary.last_step, 200);
+  EXPECT_EQ(summary.observable_rows, 3u);
+  EXPECT_EQ(summary.scene_ini, "[scene]\nname = test\n");
+  expect_frames_read_back<3>(file, 3);
+  EXPECT_THROW(read_frame<3>(file, 3), std::runtime_error);
+  EXPECT_THROW(read_frame<2>(file, 0), std::runtime_error);
+
+  std::ostringstream printed;
+  print_summary(summary, printed);
+  EXPECT_NE(printed.str().find("complete"), std::string::npos);
+
+  const std::string xmf = contents(dir_ / "run.xmf");
+  EXPECT_NE(xmf.find("NumberOfElements=\"5\""), std::string::npos);
+  EXPECT_NE(xmf.find("NumberOfElements=\"3\""), std::string::npos);
+  EXPECT_NE(xmf.find("GeometryType=\"XYZ\""), std::string::npos);
+  EXPECT_NE(xmf.find(">run.h5:/particles/all/position/value<"), std::string::npos);
+  EXPECT_EQ(xmf.find(dir_.string()), std::string::npos) << "the .h5 must be named relatively";
+}
+
+TEST_F(H5mdWriterTest, FinishedRunReadsBackIn2D) {
+  const fs::path file = dir_ / "flat.h5";
+  {
+    H5mdWriter<2> writer(file, metadata(2), 5);
+    write_frames(writer, 3);
+    writer.finish();
+  }
+  const FileSummary summary = read_summary(file);
+  EXPECT_EQ(summary.dimension, 2);
+  EXPECT_EQ(summary.frames, 3u);
+  EXPECT_EQ(summary.max_grains, 5u);
+  expect_frames_read_back<2>(file, 3);
+  EXPECT_THROW(read_frame<3>(file, 0), std::runtime_error);
+  const std::string xmf = contents(dir_ / "flat.xmf");
+  EXPECT_NE(xmf.find("GeometryType=\"XY\""), std::string::npos);
+  EXPECT_NE(xmf.find("NumberOfElements=\"3\""), std::string::npos);
+}
+
+TEST_F(H5mdWriterTest, AbandonedRunStaysPartialAndReadable) {
+  const fs::path file = dir_ / "run.h5";
+  fs::path kept;
+  {
+    H5mdWriter<3> writer(file, metadata(3), 5);
+    write_frames(writer, 2);
+    kept = writer.abandon("blow-up at step 7");
+  }
+  EXPECT_EQ(kept, partial(file));
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_TRUE(fs::exists(kept));
+  EXPECT_FALSE(fs::exists(dir_ / "run.xmf"));
+  const FileSummary summary = read_summary(kept);
+  EXPECT_EQ(summary.status, "blow-up at step 7");
+  EXPECT_EQ(summary.frames, 2u);
+  EXPECT_EQ(summary.last_step, 100);
+  expect_frames_read_back<3>(kept, 2);
+}
+
+TEST_F(H5mdWriterTest, DestroyedWriterLeavesPartialMarkedRunning) {
+  const fs::path file = dir_ / "run.h5";
+  {
+    H5mdWriter<3> writer(file, metadata(3), 5);
+    write_frames(writer, 1);
+  }
+  EXPECT_FALSE(fs::exists(file));
+  const FileSummary summary = read_summary(partial(file));
+  EXPECT_EQ(summary.status, "running");
+  EXPECT_EQ(summary.frames, 1u);
+  expect_frames_read_back<3>(partial(file), 1);
+}
+
+TEST_F(H5mdWriterTest, FlushedFramesSurviveAKilledRun) {
+  const fs::path file = dir_ / "run.h5";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    H5mdWriter<3> writer(file, metadata(3), 5);
+    write_frames(writer, 2);
+    std::_Exit(0);  // no destructor, no close: as if the run were killed
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const FileSummary summary = read_summary(partial(file));
+  EXPECT_EQ(summary.status, "running");
+  EXPECT_EQ(summary.frames, 2u);
+  expect_frames_read_back<3>(partial(file), 2);
+}
+
+TEST_F(H5mdWriterTest, WritingAfterFinishIsRefused) {
+  H5mdWriter<3> writer(dir_ / "run.h5", metadata(3), 5);
+  writer.finish();
+  EXPECT_THROW(writer.write_frame(0, 0.0, grains_of<3>(0)), std::logic_error);
+}
+
+TEST_F(H5mdWriterTest, MoreGrainsThanDeclaredAreRefused) {
+  H5mdWriter<3> writer(dir_ / "run.h5", metadata(3), 4);
+  EXPECT_THROW(writer.write_frame(0, 0.0, grains_of<3>(0)), std::invalid_argument);
+}
+
+TEST_F(H5mdWriterTest, MissingDirectoryThrowsNamingThePath) {
+  const fs::path file = dir_ / "no_such_dir" / "run.h5";
+  try {
+    H5mdWriter<3> writer(file, metadata(3), 5);
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(H5mdWriterTest, NonHdf5FileThrowsNamingTheFile) {
+  const fs::path file = dir_ / "scene.ini";
+  std::ofstream(file) << "[scene]\n";
+  try {
+    read_summary(file);
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace granjet::analysis

@@ -1,0 +1,120 @@
+// The granjet command end to end: exit codes, outputs that are complete or clearly partial,
+// the binary scene's measured restitution, and bit-identical reruns.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "analysis/h5md_reader.hpp"
+
+namespace granjet {
+namespace {
+
+namespace fs = std::filesystem;
+
+class GranjetCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("granjet_cmd_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs granjet with `args`; returns the exit code, stderr into err_.
+  int granjet(const std::string& args) {
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > " +
+                            (dir_ / "stdout.txt").string() + " 2> " + err.string();
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(err);
+    std::stringstream s;
+    s << in.rdbuf();
+    err_ = s.str();
+    return WEXITSTATUS(status);
+  }
+  std::string scene(const std::string& name) const {
+    return std::string(GRANJET_SCENES_DIR) + "/" + name;
+  }
+
+  fs::path dir_;
+  std::string err_;
+};
+
+TEST_F(GranjetCommand, BinarySceneReportsMeasuredRestitutionAndContactTime) {
+  const fs::path out = dir_ / "b.h5", summary = dir_ / "b.json";
+  ASSERT_EQ(granjet("run " + scene("binary.ini") + " --quiet --out " + out.string() +
+                    " --summary " + summary.string()),
+            0)
+      << err_;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_TRUE(fs::exists(dir_ / "b.xmf"));
+  EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+  std::ifstream in(summary);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["backend"], "soft_dem");
+  EXPECT_EQ(j["dimension"], 3);
+  EXPECT_EQ(j["grains"], 2);
+  EXPECT_GT(j["steps"].get<int>(), 0);
+  EXPECT_GT(j["particle_steps_per_second"].get<double>(), 0.0);
+  EXPECT_NEAR(j["measured"]["restitution"].get<double>() / 0.75, 1.0, 0.005);
+  EXPECT_NEAR(j["measured"]["contact_time"].get<double>() / 0.1, 1.0, 0.005);
+}
+
+TEST_F(GranjetCommand, SameSceneAndSeedGiveBitIdenticalFrames) {
+  const std::string args = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=400 --set run.t_end=4 --set output.interval=2";
+  ASSERT_EQ(granjet(args + " --out " + (dir_ / "a.h5").string()), 0) << err_;
+  ASSERT_EQ(granjet(args + " --out " + (dir_ / "b.h5").string()), 0) << err_;
+  ASSERT_EQ(granjet(args + " --set run.seed=2 --out " + (dir_ / "c.h5").string()), 0) << err_;
+  const auto a = analysis::read_frame<3>(dir_ / "a.h5", 2);
+  const auto b = analysis::read_frame<3>(dir_ / "b.h5", 2);
+  const auto c = analysis::read_frame<3>(dir_ / "c.h5", 2);
+  ASSERT_FALSE(a.position.empty());
+  EXPECT_EQ(a.id, b.id);
+  EXPECT_TRUE(a.position == b.position);  // bit for bit
+  EXPECT_TRUE(a.velocity == b.velocity);
+  EXPECT_FALSE(a.position == c.position);
+}
+
+TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
+  const fs::path out = dir_ / "bad.h5";
+  for (const std::string set : {"contact.restitution=1.5", "contact.contact_time=0",
+                                 "contact.friction=-1", "run.dt=0.1", "jet.phi_tilde=2",
+                                 "jet.colour=red"}) {
+    EXPECT_EQ(granjet("run " + scene("jet3d.ini") + " --set " + set + " --out " + out.string()),
+              2);
+    EXPECT_NE(err_.find(set.substr(0, set.find('='))), std::string::npos) << err_;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(out.string() + ".partial"));
+  }
+  EXPECT_EQ(granjet("run " + (dir_ / "missing.ini").string()), 2);
+  EXPECT_NE(err_.find("missing.ini"), std::string::npos) << err_;
+  EXPECT_EQ(granjet("run " + scene("jet3d.ini") + " --backend nonsense"), 2);
+  EXPECT_NE(err_.find("--backend"), std::string::npos) << err_;
+  EXPECT_EQ(granjet("frobnicate"), 2);
+}
+
+TEST_F(GranjetCommand, BlowUpStopsWithStepAndGrainsAndKeepsAReadablePartialFile) {
+  // dt = 0.9 t_c is far beyond the spring's stability limit: the first impacts explode.
+  const fs::path out = dir_ / "blow.h5";
+  EXPECT_EQ(granjet("run " + scene("jet3d.ini") +
+                    " --quiet --set jet.grains=300 --set run.t_end=20 --set run.dt=0.09"
+                    " --set output.interval=0.9 --out " + out.string()),
+            3);
+  EXPECT_NE(err_.find("blow-up at step"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("grains"), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(out));
+  const fs::path partial = out.string() + ".partial";
+  ASSERT_TRUE(fs::exists(partial));
+  const auto summary = analysis::read_summary(partial);
+  EXPECT_NE(summary.status.find("blow-up"), std::string::npos);
+  EXPECT_GE(summary.frames, 1u);
+}
+
+}  // namespace
+}  // namespace granjet

@@ -1,0 +1,87 @@
+// Scene files: the shipped scenes load, the resolved INI reproduces the scene, and every bad
+// input is refused with an InputError naming the key and what is allowed.
+#include "app/scene_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace granjet {
+namespace {
+
+const std::string kScenes = GRANJET_SCENES_DIR;
+
+TEST(SceneFile, ShippedScenesLoad) {
+  const Scene jet3d = load_scene(kScenes + "/jet3d.ini", {});
+  EXPECT_EQ(jet3d.dimension, 3);
+  EXPECT_EQ(jet3d.jet.grains, 20000);
+  EXPECT_DOUBLE_EQ(jet3d.contact.friction, 0.2);
+  EXPECT_DOUBLE_EQ(jet3d.dt(), 0.002);  // 0.02 t_c
+  const Scene jet2d = load_scene(kScenes + "/jet2d.ini", {});
+  EXPECT_EQ(jet2d.dimension, 2);
+  EXPECT_EQ(jet2d.jet.dispersity, Dispersity::kBi);
+  EXPECT_DOUBLE_EQ(jet2d.wall.diameter, 2.2 * jet2d.jet.diameter);
+  EXPECT_EQ(load_scene(kScenes + "/binary.ini", {}).kind, SceneKind::kBinary);
+}
+
+TEST(SceneFile, OverridesWinAndResolvedIniReproducesTheScene) {
+  const Scene s = load_scene(kScenes + "/jet3d.ini",
+                             {"contact.restitution=0.9", "wall.kind=fixed", "run.seed=7"});
+  EXPECT_DOUBLE_EQ(s.contact.restitution, 0.9);
+  EXPECT_EQ(s.wall.kind, WallKind::kFixed);
+  const std::string ini = scene_to_ini(s);
+  std::istringstream in(ini);
+  const Scene again = parse_scene(in, "resolved", {});
+  EXPECT_EQ(scene_to_ini(again), ini);
+  EXPECT_NE(ini.find("dt = 0.002"), std::string::npos);  // dt stored resolved
+}
+
+// Expects an InputError whose message names `key` and contains `allowed`.
+void expect_refused(const std::vector<std::string>& overrides, const std::string& key,
+                    const std::string& allowed) {
+  try {
+    load_scene(kScenes + "/jet3d.ini", overrides);
+    ADD_FAILURE() << "accepted " << overrides.front();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(allowed), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
+  expect_refused({"contact.restitution=0"}, "contact.restitution", "(0, 1]");
+  expect_refused({"contact.restitution=1.5"}, "contact.restitution", "(0, 1]");
+  expect_refused({"contact.contact_time=0"}, "contact.contact_time", "> 0");
+  expect_refused({"contact.contact_time=-1"}, "contact.contact_time", "> 0");
+  expect_refused({"contact.friction=-0.1"}, "contact.friction", ">= 0");
+  expect_refused({"run.dt=0.1"}, "run.dt", "smaller than contact.contact_time");
+  expect_refused({"run.dt=0.2"}, "run.dt", "smaller than contact.contact_time");
+  expect_refused({"jet.phi_tilde=0"}, "jet.phi_tilde", "(0, 1]");
+  expect_refused({"jet.phi_tilde=1.01"}, "jet.phi_tilde", "(0, 1]");
+  expect_refused({"contact.restitution=abc"}, "contact.restitution", "not a finite number");
+  expect_refused({"contact.restitution=nan"}, "contact.restitution", "not a finite number");
+  expect_refused({"wall.kind=soft"}, "wall.kind", "tethered | fixed");
+  expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
+  expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
+  expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");
+}
+
+TEST(SceneFile, UnknownKeyInFileAndMissingFileAreRefused) {
+  std::istringstream in("[contact]\nrestitution = 0.8\nrestitutoin = 0.9\n");
+  EXPECT_THROW(
+      {
+        try {
+          parse_scene(in, "typo.ini", {});
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("contact.restitutoin"), std::string::npos);
+          throw;
+        }
+      },
+      InputError);
+  EXPECT_THROW(load_scene("/nonexistent/scene.ini", {}), InputError);
+}
+
+}  // namespace
+}  // namespace granjet
