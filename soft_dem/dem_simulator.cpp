@@ -93,10 +93,11 @@ void DemSimulator<D, kFriction>::integrate_before_forces() {
       v[i] += dv;
       if constexpr (kFriction) w[i] += (dt_ * inv_inertia_[i]) * torque_[i];
     }
-    force_prev_[i] = force_[i];
-    if constexpr (kFriction) torque_prev_[i] = torque_[i];
     max_d2 = std::max(max_d2, (x[i] - x_at_build_[i]).squaredNorm());
   }
+  // F(t) becomes F(t - dt); compute_forces overwrites the other buffer.
+  force_.swap(force_prev_);
+  if constexpr (kFriction) torque_.swap(torque_prev_);
   // Written so that a NaN displacement also triggers the rebuild, which reports it.
   needs_rebuild_ = !(max_d2 <= half_skin2_);
 }
@@ -147,18 +148,18 @@ void DemSimulator<D, kFriction>::compute_forces() {
   if constexpr (kFriction) std::fill(torque_.begin(), torque_.end(), Dim<D>::zero_spin());
   const auto radius = p_.radius();
   std::int64_t contacts = 0;
-  double worst = 0.0;  // largest overlap relative to the allowed one
-  std::size_t worst_i = 0, worst_j = 0;
+  bool blown = false;  // some overlap beyond run.max_overlap of the smaller radius
+  std::size_t blown_i = 0, blown_j = 0;
   Vec<D> no_history = Vec<D>::Zero();
   for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>& v_rel) {
     ++contacts;
-    const double relative = g.overlap / (overlap_limit_ * std::min(radius[i], radius[j]));
-    if (relative > worst) {
-      worst = relative;
-      worst_i = i;
-      worst_j = j;
+    if (g.overlap > overlap_limit_ * std::min(radius[i], radius[j]) && !blown) {
+      blown = true;
+      blown_i = i;
+      blown_j = j;
     }
+    if constexpr (kFriction) touching_[k] = 1;
     Vec<D>& shear = kFriction ? shear_[k] : no_history;
     const Vec<D> f = law_.template force<true>(g, v_rel, shear);
     force_[i] += f;
@@ -170,13 +171,19 @@ void DemSimulator<D, kFriction>::compute_forces() {
       torque_[j] -= g.lever_j * t;
     }
   }, [this](std::uint32_t k) {
-    if constexpr (kFriction) shear_[k].setZero();  // apart: the history ends [spec §2]
+    // Apart: the history ends [spec §2]. The flag spares a write per listed pair and step.
+    if constexpr (kFriction) {
+      if (touching_[k]) {
+        shear_[k].setZero();
+        touching_[k] = 0;
+      }
+    }
   });
   stats_.contacts = contacts;
-  if (worst > 1.0)
+  if (blown)
     throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
                           " of the smaller radius",
-                      step_, time(), {p_.id()[worst_i], p_.id()[worst_j]});
+                      step_, time(), {p_.id()[blown_i], p_.id()[blown_j]});
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
 }
@@ -214,8 +221,8 @@ void DemSimulator<D, kFriction>::remove_escaped() {
   }
   if (keep.size() == p_.size()) return;
   p_.gather(keep);
-  for (auto* a : {&force_, &force_prev_}) Particles<D>::gather_one(*a, keep);
-  for (auto* a : {&torque_, &torque_prev_}) Particles<D>::gather_one(*a, keep);
+  Particles<D>::gather_one(force_prev_, keep);
+  Particles<D>::gather_one(torque_prev_, keep);
   Particles<D>::gather_one(inv_inertia_, keep);
 }
 
@@ -229,7 +236,7 @@ void DemSimulator<D, kFriction>::rebuild() {
     const std::size_t listed = pairs_.first.empty() ? 0 : p_.size();  // none before the first build
     for (std::size_t i = 0; i < listed; ++i)
       for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
-        if (!shear_[k].isZero(0.0))
+        if (touching_[k])
           history.emplace(pair_key(p_.id()[i], p_.id()[pairs_.partner[k]]), shear_[k]);
   }
   remove_escaped();
@@ -238,8 +245,10 @@ void DemSimulator<D, kFriction>::rebuild() {
   grid_.build(p_.position(), 2.0 * max_radius + scene_.run.skin);
   const auto order = grid_.order();
   p_.gather(order);
-  for (auto* a : {&force_, &force_prev_}) Particles<D>::gather_one(*a, order);
-  for (auto* a : {&torque_, &torque_prev_}) Particles<D>::gather_one(*a, order);
+  Particles<D>::gather_one(force_prev_, order);
+  Particles<D>::gather_one(torque_prev_, order);
+  force_.resize(p_.size());  // recomputed after every rebuild
+  torque_.resize(p_.size());
   Particles<D>::gather_one(inv_inertia_, order);
   for (std::size_t i = 0; i < p_.size(); ++i)
     index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
@@ -252,11 +261,15 @@ void DemSimulator<D, kFriction>::rebuild() {
                       pairs_);
   if constexpr (kFriction) {
     shear_.assign(pairs_.size(), Vec<D>::Zero());
+    touching_.assign(pairs_.size(), 0);
     if (!history.empty())
       for (std::size_t i = 0; i < p_.size(); ++i)
         for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k) {
           const auto it = history.find(pair_key(p_.id()[i], p_.id()[pairs_.partner[k]]));
-          if (it != history.end()) shear_[k] = it->second;
+          if (it != history.end()) {
+            shear_[k] = it->second;
+            touching_[k] = 1;
+          }
         }
   }
   x_at_build_.assign(p_.position().begin(), p_.position().end());

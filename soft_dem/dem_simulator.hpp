@@ -71,7 +71,8 @@ class DemSimulator final : public Simulator<D> {
 
   CellGrid<D> grid_;
   PairList pairs_;
-  std::vector<Vec<D>> shear_;  // u_t of each listed pair (frictional scenes only)
+  std::vector<Vec<D>> shear_;          // u_t of each listed pair (frictional scenes only)
+  std::vector<std::uint8_t> touching_;  // whether that pair touched at the last evaluation
 
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;
