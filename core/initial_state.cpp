@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <utility>
 
 #include "core/random.hpp"
@@ -160,12 +161,110 @@ Particles<D> build_binary(const Scene& scene) {
   return p;
 }
 
+// Lattice sites of one unit cell, in units of the cell edges: fcc's four, or the two of the
+// rectangular cell (s, s sqrt 3) of a triangular lattice of spacing s.
+template <int D>
+std::vector<Vec<D>> unit_cell_basis() {
+  if constexpr (D == 3)
+    return {Vec<3>(0.0, 0.0, 0.0), Vec<3>(0.5, 0.5, 0.0), Vec<3>(0.5, 0.0, 0.5),
+            Vec<3>(0.0, 0.5, 0.5)};
+  else
+    return {Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5)};
+}
+
+// Standard normal deviate by Box-Muller, from Random's portable uniforms.
+double gaussian(Random& rng) {
+  const double u1 = 1.0 - rng.uniform();  // (0, 1]: the logarithm stays finite
+  const double u2 = rng.uniform();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
+// gas.grains unit grains on randomly chosen lattice sites (kept in lattice order, which keeps
+// neighbours close in memory), Maxwellian velocities shifted to zero momentum and scaled to
+// exactly gas.temperature.
+template <int D>
+Particles<D> build_gas(const Scene& scene) {
+  const GasSpec& gas = scene.gas;
+  const GasLattice<D> lattice = gas_lattice<D>(gas);
+  const std::vector<Vec<D>> basis = unit_cell_basis<D>();
+  std::vector<Vec<D>> sites;
+  std::array<int, D> c{};
+  for (bool more = true; more;) {
+    for (const Vec<D>& b : basis) {
+      Vec<D> x;
+      for (int d = 0; d < D; ++d) x[d] = (c[d] + b[d]) * lattice.cell_edge[d];
+      sites.push_back(x);
+    }
+    more = false;  // odometer over the unit cells
+    for (int d = 0; d < D && !more; ++d) {
+      more = ++c[d] < lattice.cells[d];
+      if (!more) c[d] = 0;
+    }
+  }
+  Random rng(scene.run.seed);
+  std::vector<std::uint32_t> chosen(sites.size());
+  for (std::uint32_t k = 0; k < chosen.size(); ++k) chosen[k] = k;
+  rng.shuffle(chosen);
+  chosen.resize(gas.grains);
+  std::sort(chosen.begin(), chosen.end());
+
+  std::vector<Vec<D>> velocity(gas.grains);
+  Vec<D> mean = Vec<D>::Zero();
+  for (Vec<D>& v : velocity) {
+    for (int d = 0; d < D; ++d) v[d] = gaussian(rng);
+    mean += v;
+  }
+  mean /= static_cast<double>(gas.grains);
+  double sum_v2 = 0.0;
+  for (Vec<D>& v : velocity) {
+    v -= mean;
+    sum_v2 += v.squaredNorm();
+  }
+  const double scale = std::sqrt(gas.temperature * D * gas.grains / sum_v2);
+  Particles<D> p;
+  for (std::int64_t k = 0; k < gas.grains; ++k)
+    p.add(k, GrainKind::kFree, sites[chosen[k]], scale * velocity[k], 0.5, 1.0);
+  return p;
+}
+
 }  // namespace
+
+// The box volume is N v / phi (v the volume of a unit grain); the lattice takes the fewest unit
+// cells with at least N sites, kept close to a cube (square) in 3D (2D).
+template <int D>
+GasLattice<D> gas_lattice(const GasSpec& gas) {
+  const double volume = gas.grains * Dim<D>::volume(0.5) / gas.phi;
+  const auto sites_per_cell = static_cast<std::int64_t>(unit_cell_basis<D>().size());
+  GasLattice<D> lattice;
+  if constexpr (D == 3) {
+    int n = 1;
+    while (sites_per_cell * n * n * n < gas.grains) ++n;
+    lattice.cells = {n, n, n};
+    lattice.cell_edge = Vec<3>::Constant(std::cbrt(volume) / n);
+    lattice.nearest = lattice.cell_edge[0] / std::sqrt(2.0);
+  } else {
+    // Cells (s, s sqrt 3): n_y = n_x / sqrt 3 cells make the box about square.
+    const double ratio = std::sqrt(3.0);
+    int nx = static_cast<int>(std::ceil(std::sqrt(gas.grains * ratio / sites_per_cell)));
+    int ny = std::max(1, static_cast<int>(std::lround(nx / ratio)));
+    while (sites_per_cell * nx * ny < gas.grains) ++ny;
+    lattice.cells = {nx, ny};
+    const double s = std::sqrt(volume / (nx * ny * ratio));
+    lattice.cell_edge = Vec<2>(s, s * ratio);
+    lattice.nearest = s;
+  }
+  for (int d = 0; d < D; ++d) lattice.box[d] = lattice.cells[d] * lattice.cell_edge[d];
+  return lattice;
+}
 
 template <int D>
 Particles<D> build_initial_state(const Scene& scene) {
+  if (scene.periodic()) return build_gas<D>(scene);
   return scene.kind == SceneKind::kBinary ? build_binary<D>(scene) : build_jet<D>(scene);
 }
+
+template GasLattice<2> gas_lattice<2>(const GasSpec&);
+template GasLattice<3> gas_lattice<3>(const GasSpec&);
 
 template Particles<2> build_initial_state<2>(const Scene&);
 template Particles<3> build_initial_state<3>(const Scene&);

@@ -1,15 +1,35 @@
 // Builds the initial grains of a scene [spec §4-§5]: the jet lattice with random site removal,
-// the target wall layer, or the two grains of the binary scene.
+// the target wall layer, the two grains of the binary scene, or a periodic gas.
 #pragma once
+
+#include <array>
 
 #include "core/particles.hpp"
 #include "core/scene.hpp"
 
 namespace granjet {
 
+// The periodic box of a gas scene and its starting lattice, fcc (3D) or triangular (2D):
+// `cells` unit cells of edges `cell_edge` per axis fill the box, with at least gas.grains sites
+// of which gas.grains are kept at random. The box holds the grains at exactly gas.phi.
+template <int D>
+struct GasLattice {
+  std::array<int, D> cells{};
+  Vec<D> cell_edge = Vec<D>::Zero();
+  Vec<D> box = Vec<D>::Zero();
+  double nearest = 0.0;  // nearest-neighbour distance of the lattice sites
+};
+
+template <int D>
+GasLattice<D> gas_lattice(const GasSpec& gas);
+
+extern template GasLattice<2> gas_lattice<2>(const GasSpec&);
+extern template GasLattice<3> gas_lattice<3>(const GasSpec&);
+
 // The jet travels along -e_z (3D) or -e_x (2D) towards target grains centred in the plane
 // z = 0 (x = 0). Jet grains get ids 0..N-1, wall grains N.. . Tethered wall grains have mass
-// m, fixed ones infinite mass (inverse mass 0).
+// m, fixed ones infinite mass (inverse mass 0). Gas grains (ids 0..N-1 in lattice order) sit in
+// [0, box) with Maxwellian velocities of zero total momentum and exactly gas.temperature.
 template <int D>
 Particles<D> build_initial_state(const Scene& scene);
 

@@ -31,14 +31,20 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
     if ((positions[i] - positions[j]).squaredNorm() < cut * cut && !excluded(i, j))
       out.partner.push_back(j);
   };
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;  // the forward cells' grains
   for (std::size_t c = 0; c < grid.cells(); ++c) {
     const std::uint32_t begin = grid.start(c), end = grid.start(c + 1);
+    if (begin == end) continue;
+    ranges.clear();
+    grid.for_each_forward_neighbour(c, [&](std::size_t other) {
+      if (grid.start(other) != grid.start(other + 1))
+        ranges.emplace_back(grid.start(other), grid.start(other + 1));
+    });
     for (std::uint32_t i = begin; i < end; ++i) {
       for (std::uint32_t j = i + 1; j < end; ++j) consider(i, j);
-      grid.for_each_forward_neighbour(c, [&](std::size_t other) {
-        // Forward cells come later in memory, so j > i here too.
-        for (std::uint32_t j = grid.start(other); j < grid.start(other + 1); ++j) consider(i, j);
-      });
+      // Forward cells come later in memory, so j > i here too.
+      for (const auto& [first, last] : ranges)
+        for (std::uint32_t j = first; j < last; ++j) consider(i, j);
       out.first[i + 1] = static_cast<std::uint32_t>(out.partner.size());
     }
   }

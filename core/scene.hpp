@@ -7,10 +7,13 @@
 
 namespace granjet {
 
-enum class SceneKind { kJet, kBinary };
+// kGas and kHcs are periodic boxes of unit grains (elastic equilibrium gas, homogeneous cooling).
+enum class SceneKind { kJet, kBinary, kGas, kHcs };
 enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
 enum class WallKind { kTethered, kFixed };
 enum class Dispersity { kMono, kBi };
+// Restitution laws of the event-driven backend [spec §8].
+enum class RestitutionLaw { kConstant, kVelocityDependent, kTcModel };
 
 struct ContactSpec {
   double restitution = 0.75;   // e, binary restitution (spec §2)
@@ -63,6 +66,27 @@ struct RegionSpec {
   double below = 10.0;
 };
 
+// Periodic gas scenes [spec §5]: gas.grains unit grains (d = m = 1) at packing fraction gas.phi,
+// started on a lattice with Maxwellian velocities of temperature gas.temperature.
+struct GasSpec {
+  double phi = 0.3;
+  std::int64_t grains = 10976;  // 4 * 14^3: a full fcc lattice
+  double temperature = 1.0;     // T = sum m v^2 / (D N), zero total momentum
+  double equilibration = 2.0;   // sim time before the measurements start
+  double sample_interval = 0.1; // sim time between temperature samples (cooling)
+};
+
+// The event-driven backend [spec §8]. velocity_dependent: e(v_n) = 1 - (1 - e0)(v_n/v0)^(3/4)
+// below v0 and e0 = contact.restitution above; tc_model: elastic when either grain collided less
+// than tc ago.
+struct EdSpec {
+  RestitutionLaw restitution_law = RestitutionLaw::kVelocityDependent;
+  // A tenth of the jet speed: collisions at flow speeds keep e0, only the slow rattling of dense
+  // regions is made nearly elastic, which is what prevents inelastic collapse.
+  double v0 = 0.1;
+  double tc = 0.1;  // the soft contact time t_c of the study, the natural choice
+};
+
 struct OutputSpec {
   double interval = 1.0;  // sim time between stored frames; 0 = initial and final only
 };
@@ -77,6 +101,8 @@ struct Scene {
   WallSpec wall;
   BinarySpec binary;
   RegionSpec region;
+  GasSpec gas;
+  EdSpec ed;
   OutputSpec output;
 
   double dt() const { return run.dt > 0.0 ? run.dt : 0.02 * contact.contact_time; }
@@ -85,8 +111,9 @@ struct Scene {
   bool needs_rotation() const { return frictional(); }
   bool needs_history() const { return frictional(); }
   bool has_wall() const { return kind == SceneKind::kJet; }
+  bool periodic() const { return kind == SceneKind::kGas || kind == SceneKind::kHcs; }
   bool monodisperse() const {
-    return kind == SceneKind::kBinary || jet.dispersity == Dispersity::kMono;
+    return kind != SceneKind::kJet || jet.dispersity == Dispersity::kMono;
   }
 };
 

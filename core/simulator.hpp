@@ -54,6 +54,10 @@ class Simulator {
   // Appends the momentum transfers since the last call (soft DEM: the current pair forces
   // times the time since the last call, a sampled estimate; event-driven: every impulse).
   virtual void collect_transfers(std::vector<PairImpulse<D>>& out) = 0;
+  // Backends that must record transfers as they happen (event-driven: every collision impulse)
+  // keep them only while asked to, so a run that never collects them does not hoard memory.
+  // Time-stepped backends sample on demand and ignore this.
+  virtual void record_transfers(bool on) { (void)on; }
   virtual SimStats stats() const = 0;
   virtual EnergyBalance energy() const = 0;
 };

@@ -33,14 +33,16 @@ struct LinearSpringDashpot {
   static constexpr bool kNeedsHistory = kFriction;
   static constexpr bool kNeedsRotation = kFriction;
 
+  LinearSpringDashpot(const ContactCoefficients& coefficients, double time_step)
+      : c(coefficients), dt(time_step), inv_kt(1.0 / coefficients.kt) {}
+
   ContactCoefficients c;
-  double dt = 0.0;
+  double dt;
+  double inv_kt;  // sliding resets the spring often: multiply, do not divide
 
   // Force on i from j (j receives its negative). v_rel is the velocity of i's surface relative
-  // to j's at the contact point. With kAdvance the tangential history `shear` (u_t) grows by
-  // v_t dt and is reset to the Coulomb limit when sliding; without it the force is re-evaluated
-  // from the stored history (for stress sampling), which reproduces the step's force.
-  template <bool kAdvance>
+  // to j's at the contact point. The tangential history `shear` (u_t) grows by v_t dt and is
+  // reset to the Coulomb limit when sliding.
   Vec<D> force(const ContactGeometry<D>& g, const Vec<D>& v_rel, Vec<D>& shear) const {
     const double v_n = v_rel.dot(g.n);
     // [3.1] normal: F_n = -k_n u_n - eta_n du_n/dt with u_n = -overlap.
@@ -48,17 +50,15 @@ struct LinearSpringDashpot {
     Vec<D> f = f_n * g.n;
     if constexpr (kFriction) {
       const Vec<D> v_t = v_rel - v_n * g.n;
-      if constexpr (kAdvance) {
-        shear += dt * v_t;
-        shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
-      }
+      shear += dt * v_t;
+      shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
       // [3.2] trial tangential force, [3.3] Coulomb: slide at mu_p |F_n| along the trial.
       Vec<D> f_t = -c.kt * shear - c.eta_t * v_t;
       const double limit = c.mu * std::abs(f_n);
       const double f_t2 = f_t.squaredNorm();
       if (f_t2 > limit * limit) {
         f_t *= limit / std::sqrt(f_t2);
-        if constexpr (kAdvance) shear = -(f_t + c.eta_t * v_t) / c.kt;
+        shear = -(f_t + c.eta_t * v_t) * inv_kt;
       }
       f += f_t;
     }

@@ -8,15 +8,6 @@
 #include "core/initial_state.hpp"
 
 namespace granjet::dem {
-namespace {
-
-std::uint64_t pair_key(GrainId a, GrainId b) {
-  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-  return (lo << 32) | hi;
-}
-
-}  // namespace
 
 template <int D, bool kFriction>
 DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initial)
@@ -43,9 +34,10 @@ DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initia
   for (GrainId id : p_.id()) max_id = std::max(max_id, id);
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
   rebuild();
-  compute_forces();
-  force_prev_ = force_;  // first step: F(t - dt) = F(t) [spec §3]
-  torque_prev_ = torque_;
+  if (scene.run.integrator == IntegratorKind::kVelocityVerlet)
+    force_pass([](std::size_t) {});  // F(t0), for the first predictor
+  force_prev_.swap(force_);
+  torque_prev_.swap(torque_);
   initial_energy_ = energy().total();
 }
 
@@ -56,62 +48,107 @@ void DemSimulator<D, kFriction>::advance_to(double t) {
   while (step_ < target) step();
 }
 
+// One step from t to t + dt. Adams-Bashforth-2 needs no force after the position update, so
+// forces and integration share one pass over the grains (see force_pass); velocity Verlet
+// needs the forces at t + dt before its corrector, so it takes a predictor pass first.
 template <int D, bool kFriction>
 void DemSimulator<D, kFriction>::step() {
-  integrate_before_forces();
-  ++step_;
-  if (needs_rebuild_) rebuild();
-  compute_forces();
-  integrate_after_forces();
+  double max_d2 = 0.0;
+  if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
+    if (needs_rebuild_) rebuild();
+    force_pass([&](std::size_t i) {
+      advance_ab2(i);
+      max_d2 = std::max(max_d2, (p_.position()[i] - x_at_build_[i]).squaredNorm());
+    });
+    first_step_ = false;
+    ++step_;
+  } else {
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+      predict_verlet(i);
+      max_d2 = std::max(max_d2, (p_.position()[i] - x_at_build_[i]).squaredNorm());
+    }
+    ++step_;
+    // The predictor moved grains; check the list before the forces at t + dt.
+    if (!(max_d2 <= half_skin2_)) rebuild();
+    max_d2 = 0.0;
+    force_pass([&](std::size_t i) { correct_verlet(i); });
+  }
+  // Written so that a NaN displacement also triggers the rebuild, which reports it.
+  needs_rebuild_ = !(max_d2 <= half_skin2_);
   stats_.steps = step_;
   stats_.particle_steps += free_grains_;
 }
 
 // Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
-// x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques.
-// Velocity Verlet, predictor half: x += dt v + dt^2/(2m) F, v += dt/m F. The dashpots then see
+// x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
+// F(t-dt) = F(t) [spec §3].
+template <int D, bool kFriction>
+void DemSimulator<D, kFriction>::advance_ab2(std::size_t i) {
+  auto x = p_.position();
+  auto v = p_.velocity();
+  const double inv_m = p_.inverse_mass()[i];
+  const Vec<D>& f_prev = first_step_ ? force_[i] : force_prev_[i];
+  const Vec<D> v_new = v[i] + (0.5 * dt_ * inv_m) * (3.0 * force_[i] - f_prev);
+  x[i] += 0.5 * dt_ * (v[i] + v_new);
+  v[i] = v_new;
+  force_prev_[i] = force_[i];
+  force_[i].setZero();  // ready for the next pass
+  if constexpr (kFriction) {
+    const Spin<D>& t_prev = first_step_ ? torque_[i] : torque_prev_[i];
+    p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (3.0 * torque_[i] - t_prev);
+    torque_prev_[i] = torque_[i];
+    torque_[i] = Dim<D>::zero_spin();
+  }
+}
+
+// Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
 // this predicted v(t+dt) rather than the half-step velocity, which would lag by dt/2 and bias
 // the restitution by O(dt) (LAMMPS's nve/sphere gives e = 0.7567 for 0.75 at dt = t_c/50).
 template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::integrate_before_forces() {
-  auto x = p_.position();
-  auto v = p_.velocity();
-  auto w = p_.spin();
-  const auto inv_m = p_.inverse_mass();
-  const bool ab2 = scene_.run.integrator == IntegratorKind::kAdamsBashforth2;
-  double max_d2 = 0.0;
-  for (std::size_t i = 0; i < p_.size(); ++i) {
-    if (ab2) {
-      const Vec<D> v_new = v[i] + (0.5 * dt_ * inv_m[i]) * (3.0 * force_[i] - force_prev_[i]);
-      x[i] += 0.5 * dt_ * (v[i] + v_new);
-      v[i] = v_new;
-      if constexpr (kFriction)
-        w[i] += (0.5 * dt_ * inv_inertia_[i]) * (3.0 * torque_[i] - torque_prev_[i]);
-    } else {
-      const Vec<D> dv = (dt_ * inv_m[i]) * force_[i];
-      x[i] += dt_ * (v[i] + 0.5 * dv);
-      v[i] += dv;
-      if constexpr (kFriction) w[i] += (dt_ * inv_inertia_[i]) * torque_[i];
-    }
-    max_d2 = std::max(max_d2, (x[i] - x_at_build_[i]).squaredNorm());
-  }
-  // F(t) becomes F(t - dt); compute_forces overwrites the other buffer.
-  force_.swap(force_prev_);
-  if constexpr (kFriction) torque_.swap(torque_prev_);
-  // Written so that a NaN displacement also triggers the rebuild, which reports it.
-  needs_rebuild_ = !(max_d2 <= half_skin2_);
+void DemSimulator<D, kFriction>::predict_verlet(std::size_t i) {
+  const Vec<D> dv = (dt_ * p_.inverse_mass()[i]) * force_prev_[i];
+  p_.position()[i] += dt_ * (p_.velocity()[i] + 0.5 * dv);
+  p_.velocity()[i] += dv;
+  if constexpr (kFriction) p_.spin()[i] += (dt_ * inv_inertia_[i]) * torque_prev_[i];
 }
 
-// Velocity Verlet, corrector half: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
+// Velocity Verlet, corrector: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
 template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::integrate_after_forces() {
-  if (scene_.run.integrator != IntegratorKind::kVelocityVerlet) return;
-  auto v = p_.velocity();
-  auto w = p_.spin();
-  const auto inv_m = p_.inverse_mass();
-  for (std::size_t i = 0; i < p_.size(); ++i) {
-    v[i] += (0.5 * dt_ * inv_m[i]) * (force_[i] - force_prev_[i]);
-    if constexpr (kFriction) w[i] += (0.5 * dt_ * inv_inertia_[i]) * (torque_[i] - torque_prev_[i]);
+void DemSimulator<D, kFriction>::correct_verlet(std::size_t i) {
+  p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
+  force_prev_[i] = force_[i];
+  force_[i].setZero();
+  if constexpr (kFriction) {
+    p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (torque_[i] - torque_prev_[i]);
+    torque_prev_[i] = torque_[i];
+    torque_[i] = Dim<D>::zero_spin();
+  }
+}
+
+template <int D, bool kFriction>
+template <class OnContact, class OnApart>
+void DemSimulator<D, kFriction>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
+                                                     OnApart&& on_apart) const {
+  const auto x = p_.position();
+  const auto v = p_.velocity();
+  const auto w = p_.spin();
+  const auto radius = p_.radius();
+  const Vec<D> x_i = x[i];
+  const double radius_i = radius[i];
+  for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k) {
+    const std::uint32_t j = pairs_.partner[k];
+    const Vec<D> r_ij = x_i - x[j];
+    const double reach = radius_i + radius[j];
+    const double d2 = r_ij.squaredNorm();
+    if (d2 >= reach * reach) {
+      on_apart(k);
+      continue;
+    }
+    const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius_i, radius[j]);
+    Vec<D> v_rel = v[i] - v[j];
+    if constexpr (kFriction)
+      v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
+    on_contact(j, k, g, v_rel);
   }
 }
 
@@ -119,73 +156,65 @@ template <int D, bool kFriction>
 template <class OnContact, class OnApart>
 void DemSimulator<D, kFriction>::for_each_contact(OnContact&& on_contact,
                                                   OnApart&& on_apart) const {
-  const auto x = p_.position();
-  const auto v = p_.velocity();
-  const auto w = p_.spin();
-  const auto radius = p_.radius();
-  for (std::size_t i = 0; i < p_.size(); ++i) {
-    for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k) {
-      const std::uint32_t j = pairs_.partner[k];
-      const Vec<D> r_ij = x[i] - x[j];
-      const double reach = radius[i] + radius[j];
-      const double d2 = r_ij.squaredNorm();
-      if (d2 >= reach * reach) {
-        on_apart(k);
-        continue;
-      }
-      const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius[i], radius[j]);
-      Vec<D> v_rel = v[i] - v[j];
-      if constexpr (kFriction)
-        v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
-      on_contact(i, j, k, g, v_rel);
-    }
-  }
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    for_each_contact_of(
+        i, [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
+               const Vec<D>& v_rel) { on_contact(i, j, k, g, v_rel); },
+        on_apart);
 }
 
+// Accumulates all forces at the current state and calls after_row(i) as soon as grain i's
+// force is complete. That is right after row i of the half list: rows k < i have added their
+// share already, and later rows never touch i. force_ and torque_ must be zero on entry.
 template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::compute_forces() {
-  std::fill(force_.begin(), force_.end(), Vec<D>::Zero());
-  if constexpr (kFriction) std::fill(torque_.begin(), torque_.end(), Dim<D>::zero_spin());
+template <class AfterRow>
+[[gnu::flatten]]  // the hot loop: inline the contact law and the row visitor into it
+void DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
+  if (tethered_)
+    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   const auto radius = p_.radius();
   std::int64_t contacts = 0;
   bool blown = false;  // some overlap beyond run.max_overlap of the smaller radius
   std::size_t blown_i = 0, blown_j = 0;
   Vec<D> no_history = Vec<D>::Zero();
-  for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
-                       const Vec<D>& v_rel) {
-    ++contacts;
-    if (g.overlap > overlap_limit_ * std::min(radius[i], radius[j]) && !blown) {
-      blown = true;
-      blown_i = i;
-      blown_j = j;
-    }
-    if constexpr (kFriction) touching_[k] = 1;
-    Vec<D>& shear = kFriction ? shear_[k] : no_history;
-    const Vec<D> f = law_.template force<true>(g, v_rel, shear);
-    force_[i] += f;
-    force_[j] -= f;
-    if constexpr (kFriction) {
-      // Only the tangential part has a lever arm: tau = (contact - centre) x F.
-      const Spin<D> t = Dim<D>::cross(g.n, f);
-      torque_[i] -= g.lever_i * t;
-      torque_[j] -= g.lever_j * t;
-    }
-  }, [this](std::uint32_t k) {
-    // Apart: the history ends [spec §2]. The flag spares a write per listed pair and step.
-    if constexpr (kFriction) {
-      if (touching_[k]) {
-        shear_[k].setZero();
-        touching_[k] = 0;
-      }
-    }
-  });
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    for_each_contact_of(
+        i,
+        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          ++contacts;
+          if (g.overlap > overlap_limit_ * std::min(radius[i], radius[j]) && !blown) {
+            blown = true;
+            blown_i = i;
+            blown_j = j;
+          }
+          if constexpr (kFriction) touching_[k] = 1;
+          Vec<D>& shear = kFriction ? shear_[k] : no_history;
+          const Vec<D> f = law_.force(g, v_rel, shear);
+          force_[i] += f;
+          force_[j] -= f;
+          if constexpr (kFriction) {
+            // Only the tangential part has a lever arm: tau = (contact - centre) x F.
+            const Spin<D> t = Dim<D>::cross(g.n, f);
+            torque_[i] -= g.lever_i * t;
+            torque_[j] -= g.lever_j * t;
+          }
+        },
+        [this](std::uint32_t k) {
+          // Apart: the history ends [spec §2]. The flag spares a write per pair and step.
+          if constexpr (kFriction) {
+            if (touching_[k]) {
+              shear_[k].setZero();
+              touching_[k] = 0;
+            }
+          }
+        });
+    after_row(i);
+  }
   stats_.contacts = contacts;
   if (blown)
     throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
                           " of the smaller radius",
                       step_, time(), {p_.id()[blown_i], p_.id()[blown_j]});
-  if (tethered_)
-    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
 }
 
 template <int D, bool kFriction>
@@ -215,6 +244,7 @@ void DemSimulator<D, kFriction>::remove_escaped() {
       continue;
     }
     ++stats_.removed;
+    index_of_id_[p_.id()[i]] = kRemoved;
     removed_energy_ += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
     if constexpr (kFriction)
       removed_energy_ += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
@@ -231,13 +261,17 @@ void DemSimulator<D, kFriction>::remove_escaped() {
 template <int D, bool kFriction>
 void DemSimulator<D, kFriction>::rebuild() {
   check_finite();
-  std::unordered_map<std::uint64_t, Vec<D>> history;
+  // The tangential history of touching pairs, by grain ids (indices change below).
+  struct History {
+    GrainId a, b;
+    Vec<D> shear;
+  };
+  std::vector<History> history;
   if constexpr (kFriction) {
     const std::size_t listed = pairs_.first.empty() ? 0 : p_.size();  // none before the first build
     for (std::size_t i = 0; i < listed; ++i)
       for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
-        if (touching_[k])
-          history.emplace(pair_key(p_.id()[i], p_.id()[pairs_.partner[k]]), shear_[k]);
+        if (touching_[k]) history.push_back({p_.id()[i], p_.id()[pairs_.partner[k]], shear_[k]});
   }
   remove_escaped();
   double max_radius = 0.0;
@@ -247,8 +281,8 @@ void DemSimulator<D, kFriction>::rebuild() {
   p_.gather(order);
   Particles<D>::gather_one(force_prev_, order);
   Particles<D>::gather_one(torque_prev_, order);
-  force_.resize(p_.size());  // recomputed after every rebuild
-  torque_.resize(p_.size());
+  force_.assign(p_.size(), Vec<D>::Zero());  // rebuilds come between force passes
+  torque_.assign(p_.size(), Dim<D>::zero_spin());
   Particles<D>::gather_one(inv_inertia_, order);
   for (std::size_t i = 0; i < p_.size(); ++i)
     index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
@@ -262,15 +296,18 @@ void DemSimulator<D, kFriction>::rebuild() {
   if constexpr (kFriction) {
     shear_.assign(pairs_.size(), Vec<D>::Zero());
     touching_.assign(pairs_.size(), 0);
-    if (!history.empty())
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k) {
-          const auto it = history.find(pair_key(p_.id()[i], p_.id()[pairs_.partner[k]]));
-          if (it != history.end()) {
-            shear_[k] = it->second;
-            touching_[k] = 1;
-          }
+    for (const History& h : history) {
+      const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
+      if (a == kRemoved || b == kRemoved) continue;
+      const std::uint32_t i = std::min(a, b), j = std::max(a, b);
+      // Still touching, so still listed: find j in row i (a handful of partners).
+      for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
+        if (pairs_.partner[k] == j) {
+          shear_[k] = h.shear;
+          touching_[k] = 1;
+          break;
         }
+    }
   }
   x_at_build_.assign(p_.position().begin(), p_.position().end());
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
@@ -285,8 +322,8 @@ void DemSimulator<D, kFriction>::collect_transfers(std::vector<PairImpulse<D>>& 
   const auto id = p_.id();
   for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>& v_rel) {
-    Vec<D> shear = history(k);
-    const Vec<D> f = law_.template force<false>(g, v_rel, shear);
+    Vec<D> shear = history(k);  // a copy: sampling must not advance the history
+    const Vec<D> f = law_.force(g, v_rel, shear);
     out.push_back({id[i], id[j], x[i], x[j], elapsed * f});
   }, [](std::uint32_t) {});
 }

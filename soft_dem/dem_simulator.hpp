@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include "core/neighbour_list.hpp"
@@ -38,12 +37,14 @@ class DemSimulator final : public Simulator<D> {
 
  private:
   void step();
+  void advance_ab2(std::size_t i);
+  void predict_verlet(std::size_t i);
+  void correct_verlet(std::size_t i);
+  template <class AfterRow>
+  void force_pass(AfterRow&& after_row);
   void rebuild();
   void remove_escaped();
   void check_finite() const;
-  void compute_forces();
-  void integrate_before_forces();
-  void integrate_after_forces();
   std::size_t index_of(GrainId id) const { return index_of_id_[id]; }
   Vec<D> history(std::uint32_t k) const {
     if constexpr (kFriction) return shear_[k];
@@ -53,6 +54,9 @@ class DemSimulator final : public Simulator<D> {
   // others (k indexes the pair list).
   template <class OnContact, class OnApart>
   void for_each_contact(OnContact&& on_contact, OnApart&& on_apart) const;
+  // The same for the pairs of row i of the half list: on_contact(j, k, geometry, v_rel).
+  template <class OnContact, class OnApart>
+  void for_each_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
 
   Scene scene_;
   Particles<D> p_;
@@ -63,11 +67,12 @@ class DemSimulator final : public Simulator<D> {
   bool tethered_;
   TetheredWall<D> wall_;
 
-  std::vector<Vec<D>> force_, force_prev_;
+  std::vector<Vec<D>> force_, force_prev_;  // F being accumulated (zero between passes), F(t-dt)
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
   std::vector<Vec<D>> x_at_build_;
-  std::vector<std::uint32_t> index_of_id_;
+  static constexpr std::uint32_t kRemoved = UINT32_MAX;
+  std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region
 
   CellGrid<D> grid_;
   PairList pairs_;
@@ -77,6 +82,7 @@ class DemSimulator final : public Simulator<D> {
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;
   bool needs_rebuild_ = false;
+  bool first_step_ = true;
   double removed_energy_ = 0.0;
   double initial_energy_ = 0.0;
   double last_collect_time_ = 0.0;
