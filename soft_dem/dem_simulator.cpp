@@ -35,7 +35,7 @@ DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initia
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
   rebuild();
   if (scene.run.integrator == IntegratorKind::kVelocityVerlet)
-    force_pass([](std::size_t) {});  // F(t0), for the first predictor
+    force_pass([](std::size_t) { return 0.0; });  // F(t0), for the first predictor
   force_prev_.swap(force_);
   torque_prev_.swap(torque_);
   initial_energy_ = energy().total();
@@ -56,22 +56,26 @@ void DemSimulator<D, kFriction>::step() {
   double max_d2 = 0.0;
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    force_pass([&](std::size_t i) {
+    max_d2 = force_pass([&](std::size_t i) {
       advance_ab2(i);
-      max_d2 = std::max(max_d2, (p_.position()[i] - x_at_build_[i]).squaredNorm());
+      return (p_.position()[i] - x_at_build_[i]).squaredNorm();
     });
     first_step_ = false;
     ++step_;
   } else {
     for (std::size_t i = 0; i < p_.size(); ++i) {
       predict_verlet(i);
-      max_d2 = std::max(max_d2, (p_.position()[i] - x_at_build_[i]).squaredNorm());
+      const double d2 = (p_.position()[i] - x_at_build_[i]).squaredNorm();
+      if (d2 > max_d2 || std::isnan(d2)) max_d2 = d2;  // a NaN sticks
     }
     ++step_;
     // The predictor moved grains; check the list before the forces at t + dt.
     if (!(max_d2 <= half_skin2_)) rebuild();
     max_d2 = 0.0;
-    force_pass([&](std::size_t i) { correct_verlet(i); });
+    force_pass([&](std::size_t i) {
+      correct_verlet(i);
+      return 0.0;
+    });
   }
   // Written so that a NaN displacement also triggers the rebuild, which reports it.
   needs_rebuild_ = !(max_d2 <= half_skin2_);
@@ -169,7 +173,7 @@ void DemSimulator<D, kFriction>::for_each_contact(OnContact&& on_contact,
 template <int D, bool kFriction>
 template <class AfterRow>
 [[gnu::flatten]]  // the hot loop: inline the contact law and the row visitor into it
-void DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
+double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   const auto radius = p_.radius();
@@ -177,6 +181,7 @@ void DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
   bool blown = false;  // some overlap beyond run.max_overlap of the smaller radius
   std::size_t blown_i = 0, blown_j = 0;
   Vec<D> no_history = Vec<D>::Zero();
+  double largest = 0.0;  // of the values after_row returns (a local: no aliasing in the loop)
   for (std::size_t i = 0; i < p_.size(); ++i) {
     for_each_contact_of(
         i,
@@ -208,13 +213,15 @@ void DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
             }
           }
         });
-    after_row(i);
+    const double value = after_row(i);
+    if (value > largest || std::isnan(value)) largest = value;  // a NaN sticks
   }
   stats_.contacts = contacts;
   if (blown)
     throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
                           " of the smaller radius",
                       step_, time(), {p_.id()[blown_i], p_.id()[blown_j]});
+  return largest;
 }
 
 template <int D, bool kFriction>

@@ -40,8 +40,9 @@ class DemSimulator final : public Simulator<D> {
   void advance_ab2(std::size_t i);
   void predict_verlet(std::size_t i);
   void correct_verlet(std::size_t i);
+  // Returns the largest value after_row returned.
   template <class AfterRow>
-  void force_pass(AfterRow&& after_row);
+  double force_pass(AfterRow&& after_row);
   void rebuild();
   void remove_escaped();
   void check_finite() const;
