@@ -25,7 +25,7 @@ template <int D>
 inline ContactGeometry<D> contact_geometry(const Vec<D>& r_ij, double dist, double radius_i,
                                            double radius_j) {
   const double overlap = radius_i + radius_j - dist;
-  return {r_ij / dist, overlap, radius_i - 0.5 * overlap, radius_j - 0.5 * overlap};
+  return {r_ij * (1.0 / dist), overlap, radius_i - 0.5 * overlap, radius_j - 0.5 * overlap};
 }
 
 template <int D, bool kFriction>

@@ -183,6 +183,9 @@ double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
   Vec<D> no_history = Vec<D>::Zero();
   double largest = 0.0;  // of the values after_row returns (a local: no aliasing in the loop)
   for (std::size_t i = 0; i < p_.size(); ++i) {
+    // Grain i's sums stay in registers for its row: partners j > i never alias them.
+    Vec<D> force_i = force_[i];
+    Spin<D> torque_i = torque_[i];
     for_each_contact_of(
         i,
         [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
@@ -195,12 +198,12 @@ double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
           if constexpr (kFriction) touching_[k] = 1;
           Vec<D>& shear = kFriction ? shear_[k] : no_history;
           const Vec<D> f = law_.force(g, v_rel, shear);
-          force_[i] += f;
+          force_i += f;
           force_[j] -= f;
           if constexpr (kFriction) {
             // Only the tangential part has a lever arm: tau = (contact - centre) x F.
             const Spin<D> t = Dim<D>::cross(g.n, f);
-            torque_[i] -= g.lever_i * t;
+            torque_i -= g.lever_i * t;
             torque_[j] -= g.lever_j * t;
           }
         },
@@ -213,6 +216,8 @@ double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
             }
           }
         });
+    force_[i] = force_i;
+    torque_[i] = torque_i;
     const double value = after_row(i);
     if (value > largest || std::isnan(value)) largest = value;  // a NaN sticks
   }
