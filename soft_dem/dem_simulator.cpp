@@ -8,6 +8,14 @@
 #include "core/initial_state.hpp"
 
 namespace granjet::dem {
+namespace {
+
+// The larger of the two, where a NaN wins and stays (so a blow-up is not lost in a maximum).
+double sticky_max(double largest, double value) {
+  return value > largest || std::isnan(value) ? value : largest;
+}
+
+}  // namespace
 
 template <int D, bool kFriction>
 DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initial)
@@ -16,7 +24,6 @@ DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initia
       law_{contact_coefficients(scene.contact), scene.dt()},
       dt_(scene.dt()),
       overlap_limit_(scene.run.max_overlap),
-      half_skin2_(0.25 * scene.run.skin * scene.run.skin),
       tethered_(scene.has_wall() && scene.wall.kind == WallKind::kTethered) {
   if (tethered_) wall_ = TetheredWall<D>(p_, scene.wall.spring,
                                          scene.wall.damping_ratio * law_.c.eta_n);
@@ -51,34 +58,27 @@ void DemSimulator<D, kFriction>::advance_to(double t) {
 // One step from t to t + dt. Adams-Bashforth-2 needs no force after the position update, so
 // forces and integration share one pass over the grains (see force_pass); velocity Verlet
 // needs the forces at t + dt before its corrector, so it takes a predictor pass first.
+// The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
+// dt times the largest speed of each step, a bound on every displacement that costs no extra
+// pass over stored positions.
 template <int D, bool kFriction>
 void DemSimulator<D, kFriction>::step() {
-  double max_d2 = 0.0;
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    max_d2 = force_pass([&](std::size_t i) {
-      advance_ab2(i);
-      return (p_.position()[i] - x_at_build_[i]).squaredNorm();
-    });
+    add_travel(force_pass([&](std::size_t i) { return advance_ab2(i); }));
     first_step_ = false;
     ++step_;
   } else {
-    for (std::size_t i = 0; i < p_.size(); ++i) {
-      predict_verlet(i);
-      const double d2 = (p_.position()[i] - x_at_build_[i]).squaredNorm();
-      if (d2 > max_d2 || std::isnan(d2)) max_d2 = d2;  // a NaN sticks
-    }
+    double speed2 = 0.0;
+    for (std::size_t i = 0; i < p_.size(); ++i) speed2 = sticky_max(speed2, predict_verlet(i));
     ++step_;
-    // The predictor moved grains; check the list before the forces at t + dt.
-    if (!(max_d2 <= half_skin2_)) rebuild();
-    max_d2 = 0.0;
+    add_travel(speed2);
+    if (needs_rebuild_) rebuild();  // before the forces at t + dt
     force_pass([&](std::size_t i) {
       correct_verlet(i);
       return 0.0;
     });
   }
-  // Written so that a NaN displacement also triggers the rebuild, which reports it.
-  needs_rebuild_ = !(max_d2 <= half_skin2_);
   stats_.steps = step_;
   stats_.particle_steps += free_grains_;
 }
@@ -87,13 +87,22 @@ void DemSimulator<D, kFriction>::step() {
 // x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
 // F(t-dt) = F(t) [spec §3].
 template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::advance_ab2(std::size_t i) {
+void DemSimulator<D, kFriction>::add_travel(double largest_speed2) {
+  travel_ += dt_ * std::sqrt(largest_speed2);
+  // Written so that a NaN speed also triggers the rebuild, which reports it.
+  needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
+}
+
+template <int D, bool kFriction>
+double DemSimulator<D, kFriction>::advance_ab2(std::size_t i) {
   auto x = p_.position();
   auto v = p_.velocity();
   const double inv_m = p_.inverse_mass()[i];
   const Vec<D>& f_prev = first_step_ ? force_[i] : force_prev_[i];
   const Vec<D> v_new = v[i] + (0.5 * dt_ * inv_m) * (3.0 * force_[i] - f_prev);
   x[i] += 0.5 * dt_ * (v[i] + v_new);
+  // The step moved grain i by dt |v + v_new|/2 <= dt max(|v|, |v_new|).
+  const double speed2 = std::max(v[i].squaredNorm(), v_new.squaredNorm());
   v[i] = v_new;
   force_prev_[i] = force_[i];
   force_[i].setZero();  // ready for the next pass
@@ -103,17 +112,21 @@ void DemSimulator<D, kFriction>::advance_ab2(std::size_t i) {
     torque_prev_[i] = torque_[i];
     torque_[i] = Dim<D>::zero_spin();
   }
+  return speed2;
 }
 
 // Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
 // this predicted v(t+dt) rather than the half-step velocity, which would lag by dt/2 and bias
 // the restitution by O(dt) (LAMMPS's nve/sphere gives e = 0.7567 for 0.75 at dt = t_c/50).
 template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::predict_verlet(std::size_t i) {
+double DemSimulator<D, kFriction>::predict_verlet(std::size_t i) {
+  Vec<D>& v = p_.velocity()[i];
   const Vec<D> dv = (dt_ * p_.inverse_mass()[i]) * force_prev_[i];
-  p_.position()[i] += dt_ * (p_.velocity()[i] + 0.5 * dv);
-  p_.velocity()[i] += dv;
+  p_.position()[i] += dt_ * (v + 0.5 * dv);
+  const double speed2 = std::max(v.squaredNorm(), (v + dv).squaredNorm());  // bounds the move
+  v += dv;
   if constexpr (kFriction) p_.spin()[i] += (dt_ * inv_inertia_[i]) * torque_prev_[i];
+  return speed2;
 }
 
 // Velocity Verlet, corrector: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
@@ -218,8 +231,7 @@ double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
         });
     force_[i] = force_i;
     torque_[i] = torque_i;
-    const double value = after_row(i);
-    if (value > largest || std::isnan(value)) largest = value;  // a NaN sticks
+    largest = sticky_max(largest, after_row(i));
   }
   stats_.contacts = contacts;
   if (blown)
@@ -321,7 +333,7 @@ void DemSimulator<D, kFriction>::rebuild() {
         }
     }
   }
-  x_at_build_.assign(p_.position().begin(), p_.position().end());
+  travel_ = 0.0;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
   ++stats_.neighbour_rebuilds;
 }

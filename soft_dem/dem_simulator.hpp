@@ -37,8 +37,10 @@ class DemSimulator final : public Simulator<D> {
 
  private:
   void step();
-  void advance_ab2(std::size_t i);
-  void predict_verlet(std::size_t i);
+  void add_travel(double largest_speed2);
+  // These two return a bound on grain i's squared speed during the step.
+  double advance_ab2(std::size_t i);
+  double predict_verlet(std::size_t i);
   void correct_verlet(std::size_t i);
   // Returns the largest value after_row returned.
   template <class AfterRow>
@@ -64,14 +66,12 @@ class DemSimulator final : public Simulator<D> {
   Law law_;
   double dt_;
   double overlap_limit_;
-  double half_skin2_;
   bool tethered_;
   TetheredWall<D> wall_;
 
   std::vector<Vec<D>> force_, force_prev_;  // F being accumulated (zero between passes), F(t-dt)
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
-  std::vector<Vec<D>> x_at_build_;
   static constexpr std::uint32_t kRemoved = UINT32_MAX;
   std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region
 
@@ -82,6 +82,7 @@ class DemSimulator final : public Simulator<D> {
 
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;
+  double travel_ = 0.0;  // bound on any grain's displacement since the last rebuild
   bool needs_rebuild_ = false;
   bool first_step_ = true;
   double removed_energy_ = 0.0;

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Runs LAMMPS (Debian package lammps, binary lmp) and granjet on the same jet scenes, one core
+# each, one after the other, and prints particle-steps/s and the ratio granjet / LAMMPS.
+# The peer inputs live in ../shared/peers (see its README); scenes: fixed target, t = 0..40
+# (20,000 steps of dt = 0.002), LAMMPS gran/hooke/history ("gh", its fastest route).
+# Usage: bench/peers/compare_lammps.sh [PEERS_DIR]   (run from the repository root, after
+# scripts/setup.sh). Installs lammps if it is missing.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+peers=$(cd "${1:-$root/../shared/peers}" && pwd)
+command -v lmp >/dev/null || { apt-get update -qq && apt-get install -y -qq lammps >/dev/null; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cp "$peers"/*.lmp "$peers"/gen_data.py "$work"/
+(cd "$work" && python3 gen_data.py >/dev/null)
+
+lammps_rate() {  # input, grains, extra -var args...
+  local input=$1 grains=$2
+  shift 2
+  (cd "$work" && lmp -in "$input" -log run.log -screen none -var model gh "$@")
+  awk -v n="$grains" '/^Loop time of/ {printf "%.4g\n", n * $9 / $4}' "$work/run.log"
+}
+
+granjet_rate() {  # scene, --set args...
+  local scene=$1
+  shift
+  "$root/build/app/granjet" run "$root/scenes/$scene" --quiet --out "$work/g.h5" \
+    --summary "$work/g.json" --set run.t_end=40 --set wall.kind=fixed --set output.interval=0 "$@"
+  python3 -c "import json; print('%.4g' % json.load(open('$work/g.json'))['particle_steps_per_second'])"
+}
+
+printf "%-22s %14s %14s %8s\n" "scene" "granjet" "LAMMPS gh" "ratio"
+row() {  # label, granjet rate, lammps rate
+  printf "%-22s %14s %14s %8.2f\n" "$1" "$2" "$3" "$(python3 -c "print($2 / $3)")"
+}
+row "jet3d mu_p=0.2" "$(granjet_rate jet3d.ini)" "$(lammps_rate jet3d.lmp 20000 -var skin 0.4)"
+row "jet2d mu_p=0.2" "$(granjet_rate jet2d.ini --set contact.friction=0.2)" \
+  "$(lammps_rate jet2d.lmp 8000 -var fric 1 -var skin 0.1)"
+row "jet2d mu_p=0" "$(granjet_rate jet2d.ini --set contact.friction=0)" \
+  "$(lammps_rate jet2d.lmp 8000 -var fric 0 -var skin 0.3)"
