@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs granjet's build dependencies from Debian packages (as root, idempotent) and builds it
-# in Release under build/. Safe to run again: it installs only what is missing and rebuilds
-# only what changed.
+# Installs granjet's build dependencies and the plot script's Python packages from Debian
+# packages (as root, idempotent) and builds it in Release under build/. Safe to run again: it
+# installs only what is missing and rebuilds only what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,6 +9,7 @@ packages=(
   build-essential cmake
   libeigen3-dev libboost-dev libboost-program-options-dev libhdf5-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  python3-h5py python3-matplotlib python3-numpy
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,186 @@
+// Field names (a, b run over the local axes "r", "t", "z" in 3D, "x", "y" in 2D):
+//   n, phi, v.a, T_g, T_alpha.a                       number density, packing fraction, mean
+//                                                     velocity, temperatures (spec §6)
+//   stress.ab, stress_kinetic.ab, stress_contact.ab   total and parts, local frame [6.1]
+//   stress_xyz.ab (3D)                                total, Cartesian components
+//   P, P_over_nT, P_over_nT_alpha.a                   tr(sigma)/D, [5.2] and its directional form
+//   D, mu_star, eta, eta_star                         shear rate, -sigma_shear/P, -sigma_shear/D,
+//                                                     eta over the dilute viscosity
+//   I, sigma_Y (3D); I_s, I_T (2D)                    inertial numbers, extrapolated yield stress
+//   flatness.a                                        <c^4>/<c^2>^2 of the bin's scaled velocities
+#include "analysis/field_accumulator.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "analysis/kinetic_theory.hpp"
+#include "analysis/segment_clip.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+template <class Axes, class Matrix>
+void set_tensor(Table& t, const std::string& name, std::size_t row, const Axes& axes,
+                const Matrix& m) {
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    for (std::size_t b = 0; b < axes.size(); ++b)
+      t.set(name + "." + std::string(axes[a]) + std::string(axes[b]), row, m(a, b));
+}
+
+}  // namespace
+
+template <int D>
+FieldAccumulator<D>::FieldAccumulator(const BinSpec& spec)
+    : spec_(spec),
+      coords_(spec),
+      bins_(coords_.grid().size()),
+      half_cells_(coords_.grid().half_cells()),
+      vdf_(coords_.grid().size()) {}
+
+template <int D>
+void FieldAccumulator<D>::sample(const Particles<D>& particles,
+                                 std::span<const PairImpulse<D>> transfers, double elapsed) {
+  const BinGrid& grid = coords_.grid();
+  const auto x = particles.position();
+  const auto v = particles.velocity();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.kind()[i] == GrainKind::kWall) continue;
+    const double m = particles.mass()[i];
+    coords_.for_each_share(x[i], particles.radius()[i],
+                           [&](int bin, double volume) { bins_[bin].volume += volume; });
+    const double lateral = coords_.lateral(x[i]), h = coords_.height(x[i]);
+    const int cell = grid.half_cell_at(lateral, h);
+    if (cell < 0) continue;  // the half-cell mesh covers every bin
+    const Vec<D> local = coords_.frame(x[i]) * v[i];
+    HalfCellSums<D>& c = half_cells_[cell];
+    c.mass += m;
+    c.momentum += m * local;
+    c.lateral += m * lateral;
+    c.height += m * h;
+    const int bin = grid.bin_at(lateral, h);
+    if (bin < 0) continue;
+    BinSums& s = bins_[bin];
+    s.count += 1.0;
+    s.mass += m;
+    s.momentum += m * local;
+    s.second += m * local * local.transpose();
+    s.momentum_xyz += m * v[i];
+    s.second_xyz += m * v[i] * v[i].transpose();
+    vdf_.add(bin, local);
+  }
+  // [C.31]-[C.33]: each transfer's J r^T, r = r_i - r_j, shared by the length fraction A of the
+  // segment r_i -> r_j in each bin, rotated to the local frame at the middle of that stretch.
+  for (const PairImpulse<D>& t : transfers) {
+    const Mat w = t.impulse * (t.position_i - t.position_j).transpose();
+    clip_segment(coords_, t.position_i, t.position_j, scratch_, [&](int bin, double s0, double s1) {
+      const Vec<D> mid = t.position_i + 0.5 * (s0 + s1) * (t.position_j - t.position_i);
+      const auto frame = coords_.frame(mid);
+      bins_[bin].contact += (s1 - s0) * frame * w * frame.transpose();
+      bins_[bin].contact_xyz += (s1 - s0) * w;
+    });
+  }
+  ++samples_;
+  transfer_time_ += elapsed;
+}
+
+template <int D>
+Table FieldAccumulator<D>::layout() const {
+  const BinGrid& grid = coords_.grid();
+  Table t(grid.size());
+  const std::string lateral(Coordinates::kLateralName);
+  for (int bin = 0; bin < grid.size(); ++bin) {
+    const int k = grid.lateral_of(bin), l = grid.layer_of(bin);
+    const double centre = 0.5 * (grid.lateral_edge(k) + grid.lateral_edge(k + 1));
+    t.set("layer", bin, l);
+    t.set("lateral_index", bin, k);
+    t.set(lateral, bin, centre);
+    t.set(lateral + "_over_R_tar", bin, centre / spec_.target_radius);
+    t.set("h", bin, 0.5 * (grid.normal_edge(l) + grid.normal_edge(l + 1)));
+    t.set("volume", bin, coords_.bin_volume(bin));
+  }
+  return t;
+}
+
+template <int D>
+Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
+  const BinGrid& grid = coords_.grid();
+  constexpr auto& axes = Coordinates::kAxes;
+  constexpr auto shear = Coordinates::kShear;
+  const double d = options.diameter;
+  Table t(grid.size());
+  for (int bin = 0; bin < grid.size(); ++bin) {
+    const BinSums& s = bins_[bin];
+    const double volume = coords_.bin_volume(bin);
+    const double snapshots_volume = samples_ * volume;
+    const double n = s.count / snapshots_volume;
+    const double phi = s.volume / snapshots_volume;  // exact grain volume inside, not centres
+    t.set("n", bin, n);
+    t.set("phi", bin, phi);
+
+    // Fluctuations about the window mean: sum m u u^T = sum m v v^T - p p^T / M. An empty bin
+    // has no mean velocity and no temperature, but its kinetic stress is zero.
+    const bool occupied = s.mass > 0.0;
+    const Vec<D> mean = occupied ? Vec<D>(s.momentum / s.mass) : Vec<D>::Constant(kNaN);
+    const Mat fluct = occupied ? Mat(s.second - s.momentum * mean.transpose()) : Mat::Zero();
+    const Mat kinetic = fluct / snapshots_volume;  // [6.1], kinetic part
+    const Mat kinetic_xyz =
+        occupied ? Mat((s.second_xyz - s.momentum_xyz * (s.momentum_xyz / s.mass).transpose()) /
+                       snapshots_volume)
+                 : Mat::Zero();
+    // [C.31]-[C.33]: no transfer time means no contact information (e.g. stored frames only).
+    const double contact_norm = transfer_time_ > 0.0 ? 1.0 / (volume * transfer_time_) : kNaN;
+    const Mat contact = s.contact * contact_norm;
+    const Mat stress = kinetic + contact;
+    const double t_g = fluct.trace() / (D * s.count);  // T_g = sum m u^2 / (D N)
+    const double pressure = stress.trace() / D;        // P = tr(sigma)/D
+    for (int a = 0; a < D; ++a) {
+      const std::string axis(axes[a]);
+      const double t_alpha = fluct(a, a) / s.count;  // T_alpha = sum m u_alpha^2 / N
+      t.set("v." + axis, bin, mean[a]);
+      t.set("T_alpha." + axis, bin, t_alpha);
+      t.set("P_over_nT_alpha." + axis, bin, stress(a, a) / (n * t_alpha));  // directional [5.2]
+      t.set("flatness." + axis, bin, vdf_.flatness(a, bin));
+    }
+    t.set("T_g", bin, t_g);
+    set_tensor(t, "stress", bin, axes, stress);
+    set_tensor(t, "stress_kinetic", bin, axes, kinetic);
+    set_tensor(t, "stress_contact", bin, axes, contact);
+    if constexpr (Coordinates::kCurvilinear)
+      set_tensor(t, "stress_xyz", bin, Coordinates::kCartesianAxes,
+                 Mat(kinetic_xyz + s.contact_xyz * contact_norm));
+    t.set("P", bin, pressure);
+    t.set("P_over_nT", bin, pressure / (n * t_g));  // compare with [5.2]
+
+    // Shear quantities along the outward lateral direction (see CartesianLayers::outward_sign).
+    const double raw_rate =
+        shear_rate<D>(grid, half_cells_, bin, Coordinates::kLateral, Coordinates::kNormal);
+    const double sign = coords_.outward_sign(bin);
+    const double rate = sign * raw_rate;
+    const double shear_stress = sign * stress(shear[0], shear[1]);
+    const double mass = s.mass / s.count;  // the grain mass m (mean, if masses differ)
+    const double eta = -shear_stress / rate;
+    t.set("D", bin, raw_rate);  // D_rz (3D) or D_xy (2D) itself, not mirrored
+    t.set("mu_star", bin, -shear_stress / pressure);
+    t.set("eta", bin, eta);
+    t.set("eta_star", bin, eta / kinetic::dilute_viscosity(t_g, mass, d, D));
+    if constexpr (D == 3) {
+      t.set("I", bin, rate * std::sqrt(mass / (pressure * d)));  // I = D_rz sqrt(m/(P d))
+      // sigma_Y = sigma_rz + eta_kin(phi, T_g) D_rz (spec §6), eta_kin from [5.4]-[5.11].
+      t.set(
+          "sigma_Y", bin,
+          shear_stress + kinetic::kinetic_viscosity(phi, options.restitution, t_g, mass, d) * rate);
+    } else {
+      t.set("I_s", bin, rate * std::sqrt(mass / pressure));    // I_s = D_xy sqrt(m/P)
+      t.set("I_T", bin, std::sqrt(t_g / (pressure * d * d)));  // I_T = sqrt(T_g/(P d^2))
+    }
+  }
+  return t;
+}
+
+template class FieldAccumulator<2>;
+template class FieldAccumulator<3>;
+
+}  // namespace granjet::analysis

@@ -1,0 +1,243 @@
+#include "analysis/field_writer.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "analysis/hdf5_handle.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+// "stress.rz" -> "stress/rz": dotted names become nested groups.
+std::string path_of(std::string name) {
+  for (char& c : name)
+    if (c == '.') c = '/';
+  return name;
+}
+
+class GroupWriter {
+ public:
+  explicit GroupWriter(const std::filesystem::path& file) : ctx_(file) {
+    file_ = ctx_.own(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
+                     "the HDF5 file");
+    links_ = ctx_.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
+    ctx_.check(H5Pset_create_intermediate_group(links_.get(), 1), "set", "link properties");
+  }
+
+  // Removes an earlier `group` (a re-analysis replaces it) and creates it afresh.
+  void fresh_group(const std::string& group) {
+    if (H5Lexists(file_.get(), group.c_str(), H5P_DEFAULT) > 0)
+      ctx_.check(H5Ldelete(file_.get(), group.c_str(), H5P_DEFAULT), "replace", group);
+    ctx_.own(H5Gcreate2(file_.get(), group.c_str(), links_.get(), H5P_DEFAULT, H5P_DEFAULT),
+             H5Gclose, "create", group);
+  }
+
+  template <class T>
+  void dataset(const std::string& name, const std::vector<hsize_t>& dims,
+               const std::vector<T>& data) {
+    const hid_t type = std::is_same_v<T, int> ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE;
+    const H5Handle space = dataspace(dims);
+    const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), name.c_str(), type, space.get(),
+                                             links_.get(), H5P_DEFAULT, H5P_DEFAULT),
+                                  H5Dclose, "create", name);
+    ctx_.check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), "write",
+               name);
+  }
+
+  void attribute(const std::string& object, const char* name, int value) {
+    write_attribute(object, name, H5T_NATIVE_INT, dataspace({}).get(), &value);
+  }
+  void attribute(const std::string& object, const char* name, double value) {
+    write_attribute(object, name, H5T_NATIVE_DOUBLE, dataspace({}).get(), &value);
+  }
+  void attribute(const std::string& object, const char* name, const std::string& value) {
+    write_attribute(object, name, string_type(value.size() + 1).get(), dataspace({}).get(),
+                    value.c_str());
+  }
+  // A list of names as one fixed-length string array.
+  void attribute(const std::string& object, const char* name,
+                 const std::vector<std::string>& values) {
+    std::size_t width = 1;
+    for (const std::string& v : values) width = std::max(width, v.size() + 1);
+    std::string packed(width * values.size(), '\0');
+    for (std::size_t k = 0; k < values.size(); ++k)
+      packed.replace(k * width, values[k].size(), values[k]);
+    write_attribute(object, name, string_type(width).get(), dataspace({values.size()}).get(),
+                    packed.data());
+  }
+
+  // Closes the file, reporting a failure to write its last metadata.
+  void close() { ctx_.check(file_.reset(), "close", "the file"); }
+
+ private:
+  H5Handle dataspace(const std::vector<hsize_t>& dims) const {
+    const hid_t space = dims.empty()
+                            ? H5Screate(H5S_SCALAR)
+                            : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    return ctx_.own(space, H5Sclose, "create", "a dataspace");
+  }
+  H5Handle string_type(std::size_t size) const {
+    H5Handle type = ctx_.own(H5Tcopy(H5T_C_S1), H5Tclose, "create", "a string type");
+    ctx_.check(H5Tset_size(type.get(), size), "size", "a string type");
+    return type;
+  }
+  void write_attribute(const std::string& object, const char* name, hid_t type, hid_t space,
+                       const void* data) {
+    const std::string what = object + " attribute " + name;
+    const H5Handle a = ctx_.own(H5Acreate_by_name(file_.get(), object.c_str(), name, type, space,
+                                                  H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                H5Aclose, "create", what);
+    ctx_.check(H5Awrite(a.get(), type, data), "write", what);
+  }
+
+  H5Context ctx_;
+  H5Handle file_;
+  H5Handle links_;
+};
+
+// Every column of `table` as <group>/<path>/{mean,std,sem,count} of shape `dims`.
+void write_spreads(GroupWriter& out, const std::string& group, const EnsembleTable& table,
+                   const std::vector<hsize_t>& dims) {
+  for (const std::string& name : table.names()) {
+    std::vector<double> mean, std, sem;
+    std::vector<int> count;
+    for (std::size_t row = 0; row < table.rows(); ++row) {
+      const Spread& s = table.at(row, name);
+      mean.push_back(s.mean);
+      std.push_back(s.std);
+      sem.push_back(s.sem);
+      count.push_back(s.count);
+    }
+    const std::string base = group + "/" + path_of(name) + "/";
+    out.dataset(base + "mean", dims, mean);
+    out.dataset(base + "std", dims, std);
+    out.dataset(base + "sem", dims, sem);
+    out.dataset(base + "count", dims, count);
+  }
+}
+
+// A distribution: its abscissa once, the other columns as spreads.
+void write_distribution(GroupWriter& out, const std::string& group, const EnsembleTable& table,
+                        const std::string& abscissa) {
+  const std::vector<hsize_t> dims{table.rows()};
+  out.dataset(group + "/" + abscissa, dims, table.means(abscissa));
+  for (const std::string& name : table.names()) {
+    if (name == abscissa) continue;
+    std::vector<double> mean, std, sem;
+    for (std::size_t row = 0; row < table.rows(); ++row) {
+      mean.push_back(table.at(row, name).mean);
+      std.push_back(table.at(row, name).std);
+      sem.push_back(table.at(row, name).sem);
+    }
+    const std::string base = group + "/" + path_of(name) + "/";
+    out.dataset(base + "mean", dims, mean);
+    out.dataset(base + "std", dims, std);
+    out.dataset(base + "sem", dims, sem);
+  }
+}
+
+// File names may hold characters that XML reserves.
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '&')
+      out += "&amp;";
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+std::vector<hsize_t> mesh_dims(const EnsembleResult& r) {
+  return {r.edges.height.size() - 1, r.edges.lateral.size() - 1};
+}
+
+}  // namespace
+
+void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult& result) {
+  GroupWriter out(file);
+  const std::vector<hsize_t> dims = mesh_dims(result);
+
+  out.fresh_group("/fields");
+  out.attribute("/fields", "dimension", result.dimension);
+  out.attribute("/fields", "seeds", result.seeds);
+  out.attribute("/fields", "coordinates",
+                std::string(result.dimension == 3 ? "cylindrical" : "cartesian"));
+  out.dataset("/fields/mesh/lateral", {result.edges.lateral.size()}, result.edges.lateral);
+  out.dataset("/fields/mesh/height", {result.edges.height.size()}, result.edges.height);
+  for (const std::string& name : result.layout.names())
+    out.dataset("/fields/layout/" + name, dims, result.layout.column(name));
+  write_spreads(out, "/fields", result.fields, dims);
+
+  out.fresh_group("/analysis");
+  write_spreads(out, "/analysis/global", result.global, {});
+  write_distribution(out, "/analysis/vdf", result.vdf, "c");
+  if (result.azimuth.rows() > 0)
+    write_distribution(out, "/analysis/azimuth", result.azimuth, "phi");
+  for (const FitResult& fit : result.fits) {
+    const std::string group = "/analysis/fits/" + fit.law;
+    const std::vector<hsize_t> p{fit.parameters.size()};
+    out.dataset(group + "/value", p, std::vector<double>(fit.value.begin(), fit.value.end()));
+    out.dataset(group + "/error", p, std::vector<double>(fit.error.begin(), fit.error.end()));
+    out.attribute(group, "parameters", fit.parameters);
+    out.attribute(group, "ssr", fit.ssr);
+    out.attribute(group, "points", fit.points);
+    out.attribute(group, "converged", fit.converged ? 1.0 : 0.0);
+  }
+  out.close();
+}
+
+std::vector<double> read_analysis_values(const std::filesystem::path& file,
+                                         const std::string& dataset) {
+  const H5Context ctx(file);
+  const H5Handle f =
+      ctx.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open", "the file");
+  const H5Handle set =
+      ctx.own(H5Dopen2(f.get(), dataset.c_str(), H5P_DEFAULT), H5Dclose, "open", dataset);
+  const H5Handle space = ctx.own(H5Dget_space(set.get()), H5Sclose, "read the shape of", dataset);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) ctx.fail("read the shape of", dataset);
+  std::vector<double> values(static_cast<std::size_t>(n));
+  ctx.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            "read", dataset);
+  return values;
+}
+
+void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
+                       const EnsembleResult& result) {
+  std::ofstream out(xmf);
+  if (!out) throw std::runtime_error("'" + xmf.string() + "': cannot write");
+  const std::size_t nx = result.edges.lateral.size(), ny = result.edges.height.size();
+  const std::string source = xml_escaped(h5_name);
+  const auto item = [&](const std::string& dims, const std::string& path) {
+    return "<DataItem Dimensions=\"" + dims +
+           "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + source + ":" + path +
+           "</DataItem>";
+  };
+  const std::string cells = std::to_string(ny - 1) + " " + std::to_string(nx - 1);
+  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+      << "  <Grid Name=\"fields\" GridType=\"Uniform\">\n"
+      << "   <Topology TopologyType=\"2DRectMesh\" Dimensions=\"" << ny << " " << nx << "\"/>\n"
+      << "   <Geometry GeometryType=\"VXVY\">\n    "
+      << item(std::to_string(nx), "/fields/mesh/lateral") << "\n    "
+      << item(std::to_string(ny), "/fields/mesh/height") << "\n   </Geometry>\n";
+  for (const std::string& name : result.fields.names())
+    out << "   <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n    "
+        << item(cells, "/fields/" + path_of(name) + "/mean") << "\n   </Attribute>\n";
+  out << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  if (!out.flush()) throw std::runtime_error("'" + xmf.string() + "': cannot write");
+}
+
+}  // namespace granjet::analysis

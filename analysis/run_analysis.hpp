@@ -1,0 +1,115 @@
+// The study's measurements of one run (spec §6), fed sample by sample from the run loop or from
+// stored frames, and their combination over an ensemble of seeds with the scene's fits.
+//
+//   RunAnalysis<D> analysis(AnalysisConfig::for_scene(scene));  // + the [analysis] keys
+//   std::vector<PairImpulse<D>> transfers;
+//   while (running) {
+//     sim.advance_to(std::min(analysis.next_sample_time(), ...other stops...));
+//     if (analysis.due(sim.time())) {
+//       transfers.clear();
+//       sim.collect_transfers(transfers);  // at every sample, so the ED buffer stays small
+//       analysis.sample(sim.time(), sim.particles(), transfers);
+//     }
+//   }
+//   runs.push_back(analysis.finish());                 // one RunResult per seed
+//   EnsembleResult all = combine_runs(runs, D);         // mean and spread over seeds + fits
+//   write_analysis_hdf5(file, all); to_json(all);       // field_writer.hpp, analysis_json.hpp
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "analysis/bin_grid.hpp"
+#include "analysis/field_accumulator.hpp"
+#include "analysis/fits.hpp"
+#include "analysis/scattering.hpp"
+#include "analysis/table.hpp"
+#include "core/particles.hpp"
+#include "core/scene.hpp"
+#include "core/simulator.hpp"
+
+namespace granjet::analysis {
+
+// The scene's [analysis] section.
+struct AnalysisConfig {
+  double window_start = 50.0;  // time average over window_start <= t <= window_end (spec §5)
+  double window_end = 100.0;
+  double sample_interval = 0.5;
+  BinSpec bins;
+  FieldOptions options;
+  double scatter_radius = 16.5;    // grains beyond this distance from the jet axis are scattered
+  double reference_azimuth = 0.0;  // phi = 0 direction of the azimuthal distribution (3D)
+  int vdf_bins = 48;               // histogram of scaled velocities over [-vdf_range, vdf_range]
+  double vdf_range = 6.0;
+  int azimuth_bins = 36;
+
+  // The mesh and window of the scene's [analysis] section (the study's, spec §5-§6, in the
+  // shipped scenes: 3D 5 rings of width R_tar/5 in a 5 d layer, window 50..100; 2D layers
+  // 0..5 d and 5..10 d cut into 10 bins across -R_tar..R_tar, window 180..300).
+  // R_tar = wall.diameter/2; e-bar [2.55] for frictional grains; scattered grains are counted
+  // beyond 1.5 R_tar (inside the region cut, so they are seen before their removal).
+  static AnalysisConfig for_scene(const Scene& scene);
+};
+
+// One run's measurements.
+struct RunResult {
+  MeshEdges edges;
+  Table layout;   // per bin: FieldAccumulator::layout()
+  Table fields;   // per bin: FieldAccumulator::fields()
+  Table global;   // one row: flatness.a (pooled), psi0, v2 (3D), scattered, samples,
+                  // transfer_time, window_start, window_end
+  Table vdf;      // per histogram interval: "c" (its centre), "density.a"
+  Table azimuth;  // per interval of [0, 2 pi): "phi" (its centre), "dN_dphi" over its mean (3D)
+};
+
+template <int D>
+class RunAnalysis {
+ public:
+  explicit RunAnalysis(const AnalysisConfig& config);
+
+  // Samples are due every sample_interval from t = 0 (scattering is watched for the whole run,
+  // the fields only inside the window).
+  double next_sample_time() const { return next_; }
+  bool due(double time) const { return time >= next_ - 1e-9 * config_.sample_interval; }
+  bool in_window(double time) const;
+  // `transfers`: everything collect_transfers returned since the previous sample (they may be
+  // left empty outside the window, where they are not used).
+  void sample(double time, const Particles<D>& particles,
+              std::span<const PairImpulse<D>> transfers);
+  // A sample without momentum transfers (stored frames): the contact stress stays unmeasured.
+  void sample(double time, const Particles<D>& particles);
+  RunResult finish() const;
+
+  const FieldAccumulator<D>& field_accumulator() const { return fields_; }
+  const ScatteringMeasurement<D>& scattering() const { return scattering_; }
+
+ private:
+  void take(double time, const Particles<D>& particles, std::span<const PairImpulse<D>> transfers,
+            bool transfers_known);
+
+  AnalysisConfig config_;
+  FieldAccumulator<D> fields_;
+  ScatteringMeasurement<D> scattering_;
+  double next_ = 0.0;
+  bool open_ = false;  // the window has had its first sample
+  double last_window_time_ = 0.0;
+};
+
+extern template class RunAnalysis<2>;
+extern template class RunAnalysis<3>;
+
+// Mean and spread over seeds of every quantity, and the scene's fits to the ensemble-mean bins:
+// 3D mu* = a I; 2D [6.2] phi(I_T), [6.3] phi(I_s), [6.9] and [6.10] mu*(I_s).
+struct EnsembleResult {
+  int dimension = 3;
+  int seeds = 0;
+  MeshEdges edges;
+  Table layout;
+  EnsembleTable fields, global, vdf, azimuth;
+  std::vector<FitResult> fits;
+};
+
+// Throws std::invalid_argument when `runs` is empty or the runs differ in their bins.
+EnsembleResult combine_runs(std::span<const RunResult> runs, int dimension);
+
+}  // namespace granjet::analysis

@@ -1,0 +1,76 @@
+#include "analysis/scattering.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace granjet::analysis {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+template <int D>
+Vec<D> perpendicular(const Vec<D>& v) {
+  Vec<D> p = v;
+  p[Dim<D>::kJetAxis] = 0.0;
+  return p;
+}
+
+}  // namespace
+
+template <int D>
+double scattering_angle(std::span<const Vec<D>> velocities) {
+  double along_wall = 0.0, forward = 0.0;
+  std::size_t n = 0;
+  for (const Vec<D>& v : velocities) {
+    const double speed = v.norm();
+    if (speed == 0.0) continue;
+    along_wall += perpendicular<D>(v).norm() / speed;
+    forward += -v[Dim<D>::kJetAxis] / speed;  // the jet travels along -e_jet
+    ++n;
+  }
+  return n == 0 ? kNaN : std::atan2(along_wall, forward);
+}
+
+double anisotropy_v2(std::span<const double> azimuths) {
+  if (azimuths.empty()) return kNaN;
+  double sum = 0.0;
+  for (double phi : azimuths) sum += std::cos(2.0 * phi);
+  return sum / azimuths.size();
+}
+
+template <int D>
+void ScatteringMeasurement<D>::observe(const Particles<D>& particles) {
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles.kind()[i] == GrainKind::kWall) continue;
+    const Vec<D>& x = particles.position()[i];
+    if (perpendicular<D>(x).norm() <= radius_) continue;
+    const auto id = static_cast<std::size_t>(particles.id()[i]);
+    if (id >= seen_.size()) seen_.resize(id + 1, false);
+    if (seen_[id]) continue;
+    seen_[id] = true;
+    velocity_.push_back(particles.velocity()[i]);
+    if constexpr (D == 3) azimuth_.push_back(std::atan2(x.y(), x.x()) - reference_);
+  }
+}
+
+template <int D>
+std::vector<double> ScatteringMeasurement<D>::azimuthal_distribution(int bins) const {
+  std::vector<double> out(bins, 0.0);
+  if (azimuth_.empty()) return out;
+  for (double phi : azimuth_) {
+    const double wrapped = phi - kTwoPi * std::floor(phi / kTwoPi);
+    out[std::min(bins - 1, static_cast<int>(wrapped / kTwoPi * bins))] += 1.0;
+  }
+  for (double& c : out) c *= static_cast<double>(bins) / azimuth_.size();  // mean 1
+  return out;
+}
+
+template double scattering_angle<2>(std::span<const Vec<2>>);
+template double scattering_angle<3>(std::span<const Vec<3>>);
+template class ScatteringMeasurement<2>;
+template class ScatteringMeasurement<3>;
+
+}  // namespace granjet::analysis

@@ -1,0 +1,55 @@
+// Where the jet goes after impact (spec §6): the scattering angle psi0 and, in 3D, the azimuthal
+// distribution of the scattered grains and its anisotropy v2. A grain counts as scattered the
+// first time a snapshot finds it farther than `radius` from the jet axis (it has left the target
+// region); its velocity and position at that moment are recorded once, before the run's region
+// cut can remove it.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/particles.hpp"
+
+namespace granjet::analysis {
+
+// psi0 = the angle between the incident direction -e_jet and the mean direction of the
+// velocities: each velocity becomes its unit vector in its own meridional half-plane,
+// (|v_perp|, v . (-e_jet))/|v|, and psi0 is the polar angle of their mean (radians; 0 = straight
+// on, pi/2 = along the wall, above pi/2 = back towards the source). NaN for no velocities.
+template <int D>
+double scattering_angle(std::span<const Vec<D>> velocities);
+
+// v2 = <cos 2 phi>: with dN/dphi = v0 (1 + 2 v2 cos 2phi + ...), the cos 2phi Fourier coefficient
+// over the mean v0 (the convention of elliptic flow). NaN for no angles.
+double anisotropy_v2(std::span<const double> azimuths);
+
+template <int D>
+class ScatteringMeasurement {
+ public:
+  // `reference_azimuth`: the direction (angle from e_x about the jet axis) of the jet cross
+  // section's short side, from which phi is measured (3D).
+  ScatteringMeasurement(double radius, double reference_azimuth)
+      : radius_(radius), reference_(reference_azimuth) {}
+
+  void observe(const Particles<D>& particles);
+
+  std::size_t count() const { return velocity_.size(); }
+  std::span<const Vec<D>> velocities() const { return velocity_; }
+  std::span<const double> azimuths() const { return azimuth_; }  // 3D; empty in 2D
+  double psi0() const { return scattering_angle<D>(velocity_); }
+  double v2() const { return anisotropy_v2(azimuth_); }
+  // dN/dphi over `bins` equal intervals of [0, 2 pi), divided by its mean (v0).
+  std::vector<double> azimuthal_distribution(int bins) const;
+
+ private:
+  double radius_;
+  double reference_;
+  std::vector<bool> seen_;  // by grain id
+  std::vector<Vec<D>> velocity_;
+  std::vector<double> azimuth_;
+};
+
+extern template class ScatteringMeasurement<2>;
+extern template class ScatteringMeasurement<3>;
+
+}  // namespace granjet::analysis

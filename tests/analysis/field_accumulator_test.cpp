@@ -1,0 +1,286 @@
+// Fields per bin from synthetic data with known answers (spec §6): contact stress of a lattice
+// with known pair forces straddling bin borders [C.31]-[C.33]; kinetic stress of a Maxwellian
+// = n T I; strain rate of a linear shear field; binned mass and volume sum to the totals.
+#include "analysis/field_accumulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace granjet::analysis {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+BinSpec jet3d_spec() { return {11.0, 0.5, 5, 1, 5.0}; }
+BinSpec jet2d_spec() { return {33.0, 0.5, 10, 2, 5.0}; }
+
+// A uniformly random point of the 3D mesh region (r < R, 0 < h < top) or the 2D one, kept
+// `margin` away from its outer surfaces.
+template <int D>
+Vec<D> random_point(std::mt19937_64& rng, const BinSpec& s, double margin) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double h = margin + (s.layers * s.layer_height - 2 * margin) * u(rng) + s.wall_surface;
+  if constexpr (D == 3) {
+    const double r = (s.target_radius - margin) * std::sqrt(u(rng)), a = 2 * kPi * u(rng);
+    return {r * std::cos(a), r * std::sin(a), h};
+  } else {
+    return {h, (s.target_radius - margin) * (2 * u(rng) - 1)};
+  }
+}
+
+// Grains of a square (2D) or simple cubic (3D) lattice of spacing 1 filling the mesh region,
+// each pair of nearest neighbours pushing with a known impulse J = f(midpoint) (r_i - r_j),
+// f varying in space so that bins differ. Many bonds straddle bin borders.
+template <int D>
+std::vector<PairImpulse<D>> lattice_bonds(const BinSpec& s) {
+  std::vector<Vec<D>> sites;
+  const int n_h = static_cast<int>(s.layers * s.layer_height) - 1;
+  const int n_l = static_cast<int>(s.target_radius) - 1;
+  for (int k = 0; k < n_h; ++k)
+    for (int i = -n_l; i <= n_l; ++i)
+      for (int j = (D == 3 ? -n_l : 0); j <= (D == 3 ? n_l : 0); ++j) {
+        Vec<D> x;
+        if constexpr (D == 3) {
+          x = {i + 0.25, j + 0.35, k + 1.0 + s.wall_surface - 0.2};
+          if (std::hypot(x[0], x[1]) > s.target_radius - 1.0) continue;
+        } else {
+          x = {k + 1.0 + s.wall_surface - 0.2, i + 0.35};
+        }
+        sites.push_back(x);
+      }
+  std::vector<PairImpulse<D>> bonds;
+  for (std::size_t a = 0; a < sites.size(); ++a)
+    for (std::size_t b = a + 1; b < sites.size(); ++b) {
+      const Vec<D> r = sites[a] - sites[b];
+      if (r.norm() > 1.01) continue;
+      const Vec<D> mid = 0.5 * (sites[a] + sites[b]);
+      const double f = 1.0 + 0.1 * mid.sum() + 0.01 * mid.squaredNorm();
+      bonds.push_back({GrainId(a), GrainId(b), sites[a], sites[b], f * r});
+    }
+  return bonds;
+}
+
+template <class T>
+class FieldAccumulatorTyped : public ::testing::Test {};
+using Dimensions = ::testing::Types<std::integral_constant<int, 2>, std::integral_constant<int, 3>>;
+TYPED_TEST_SUITE(FieldAccumulatorTyped, Dimensions);
+
+BinSpec spec_for(int dimension) { return dimension == 3 ? jet3d_spec() : jet2d_spec(); }
+
+// [C.31]-[C.33]: every bond lies inside the mesh, so the bins' contact stresses times their
+// volumes and the transfer time add up to the total virial sum J r^T: in Cartesian components
+// ("stress_xyz" in 3D; without grains the stress is the contact part alone), and in the local
+// frame for the trace, which the per-transfer rotation leaves unchanged.
+TYPED_TEST(FieldAccumulatorTyped, EqC31_C33_LatticeContactStressSumsToTheVirial) {
+  constexpr int D = TypeParam::value;
+  using Coordinates = typename FieldAccumulator<D>::Coordinates;
+  const BinSpec spec = spec_for(D);
+  const auto bonds = lattice_bonds<D>(spec);
+  ASSERT_GT(bonds.size(), 1000u);
+  Eigen::Matrix<double, D, D> virial = Eigen::Matrix<double, D, D>::Zero();
+  for (const auto& t : bonds) virial += t.impulse * (t.position_i - t.position_j).transpose();
+
+  FieldAccumulator<D> acc(spec);
+  const double tau = 0.25;
+  acc.sample(Particles<D>{}, {}, 0.0);
+  acc.sample(Particles<D>{}, bonds, tau);
+  const Table f = acc.fields({});
+  const Table layout = acc.layout();
+  const std::string cartesian = D == 3 ? "stress_xyz." : "stress.";
+  Eigen::Matrix<double, D, D> xyz = Eigen::Matrix<double, D, D>::Zero();
+  double trace = 0.0;
+  for (std::size_t bin = 0; bin < f.rows(); ++bin) {
+    const double weight = layout.at(bin, "volume") * tau;
+    for (int a = 0; a < D; ++a) {
+      const std::string local(Coordinates::kAxes[a]);
+      trace += weight * f.at(bin, "stress_contact." + local + local);
+      for (int b = 0; b < D; ++b)
+        xyz(a, b) += weight * f.at(bin, cartesian + std::string(Coordinates::kCartesianAxes[a]) +
+                                            std::string(Coordinates::kCartesianAxes[b]));
+    }
+  }
+  EXPECT_NEAR(trace, virial.trace(), 1e-12 * std::abs(virial.trace()));
+  EXPECT_LT((xyz - virial).norm(), 1e-12 * virial.norm());
+  // The lattice is not uniform in the bins: their stresses differ, so a wrong split would show.
+  EXPECT_GT(std::abs(f.at(0, "P") - f.at(1, "P")), 1e-3 * std::abs(f.at(0, "P")));
+}
+
+// One bond across a border splits exactly by the lengths on either side: 0.3 and 0.7.
+TEST(FieldAccumulator, EqC31_C33_BondAcrossABorderSplitsByLength) {
+  FieldAccumulator<2> acc(jet2d_spec());
+  const Vec<2> xi(3.0, -0.3), xj(3.0, 0.7), impulse(0.0, -2.0);  // pushes i away from j
+  acc.sample(Particles<2>{}, {}, 0.0);
+  const std::vector<PairImpulse<2>> bond{{0, 1, xi, xj, impulse}};
+  acc.sample(Particles<2>{}, bond, 0.5);
+  const Table f = acc.fields({});
+  const double v = 6.6 * 5.0, j_r = -2.0 * -1.0;  // J_y r_y, r = r_i - r_j = (0, -1)
+  EXPECT_NEAR(f.at(4, "stress_contact.yy"), 0.3 * j_r / (v * 0.5), 1e-15);
+  EXPECT_NEAR(f.at(5, "stress_contact.yy"), 0.7 * j_r / (v * 0.5), 1e-15);
+  EXPECT_EQ(f.at(4, "stress_contact.xx"), 0.0);
+  EXPECT_EQ(f.at(6, "stress_contact.yy"), 0.0);
+}
+
+// Each transfer is rotated to the cylindrical frame where it acts: a radial bond on the y axis is
+// pure sigma_rr, a tangential one on the x axis pure sigma_tt, though in Cartesian axes they are
+// sigma_yy and sigma_yy again.
+TEST(FieldAccumulator, EqC31_C33_RingContactStressInTheLocalFrame) {
+  FieldAccumulator<3> acc(jet3d_spec());
+  acc.sample(Particles<3>{}, {}, 0.0);
+  const std::vector<PairImpulse<3>> bonds{
+      {0, 1, {0.0, 5.0, 2.0}, {0.0, 6.0, 2.0}, {0.0, -2.0, 0.0}},    // radial, ring 2
+      {2, 3, {5.0, -0.5, 2.0}, {5.0, 0.5, 2.0}, {0.0, -3.0, 0.0}}};  // tangential, ring 2
+  acc.sample(Particles<3>{}, bonds, 1.0);
+  const Table f = acc.fields({});
+  const double v = acc.layout().at(2, "volume");
+  EXPECT_NEAR(f.at(2, "stress_contact.rr") * v, 2.0, 1e-12);
+  // Lying wholly in one ring, each bond is rotated with the frame at its middle.
+  EXPECT_NEAR(f.at(2, "stress_contact.tt") * v, 3.0, 1e-12);
+  EXPECT_NEAR(f.at(2, "stress_contact.rt") * v, 0.0, 1e-12);
+  EXPECT_NEAR(f.at(2, "stress_xyz.yy") * v, 5.0, 1e-12);
+  EXPECT_EQ(f.at(2, "stress_contact.zz"), 0.0);
+}
+
+// The two backends' currencies give the same contact stress for the same momentum flow: soft
+// DEM hands a steady force F as F x elapsed at every sample, ED the individual impulses summing
+// to F tau, arriving unevenly between samples. Both: sum(J r^T A)/(V tau).
+TEST(FieldAccumulator, EqC31_C33_DemForceSamplesAndEdImpulsesAgree) {
+  const Vec<2> xi(3.0, 1.2), xj(3.8, 2.0), force(-0.3, -0.4);
+  const auto bond = [&](double scale) {
+    return std::vector<PairImpulse<2>>{{0, 1, xi, xj, scale * force}};
+  };
+  FieldAccumulator<2> dem(jet2d_spec()), ed(jet2d_spec());
+  dem.sample(Particles<2>{}, {}, 0.0);
+  for (int k = 0; k < 8; ++k) dem.sample(Particles<2>{}, bond(0.25), 0.25);  // tau = 2
+  ed.sample(Particles<2>{}, {}, 0.0);
+  std::vector<PairImpulse<2>> burst;
+  for (int k = 0; k < 5; ++k) burst.push_back(bond(0.3).front());  // 1.5 F in the first second
+  ed.sample(Particles<2>{}, burst, 1.0);
+  ed.sample(Particles<2>{}, bond(0.5), 1.0);  // 0.5 F in the second
+  const Table a = dem.fields({}), b = ed.fields({});
+  EXPECT_NEAR(a.at(5, "stress_contact.xy"), b.at(5, "stress_contact.xy"), 1e-15);
+  EXPECT_NEAR(a.at(5, "P"), b.at(5, "P"), 1e-15);
+  // F r^T / V with r = r_i - r_j = (-0.8, -0.8): sigma_xy = F_x r_y / V.
+  EXPECT_NEAR(a.at(5, "stress_contact.xy"), -0.3 * -0.8 / (6.6 * 5.0), 1e-15);
+}
+
+// A Maxwellian at temperature T on top of a mean flow (radial outflow in 3D): the kinetic stress
+// in the local frame is n T I, T_g = T_alpha = T, whatever the mean flow. The statistical error
+// of a diagonal component is sqrt(2/N) relative (N ~ 10^4 grain samples per bin: 1.4%), of an
+// off-diagonal one n T/sqrt(N); the tolerances are 5 of those.
+TYPED_TEST(FieldAccumulatorTyped, MaxwellianKineticStressIsNTIdentity) {
+  constexpr int D = TypeParam::value;
+  const BinSpec spec = spec_for(D);
+  FieldAccumulator<D> acc(spec);
+  std::mt19937_64 rng(41);
+  const double temperature = 0.04, mass = 1.0;
+  std::normal_distribution<double> gauss(0.0, std::sqrt(temperature / mass));
+  const int grains = D == 3 ? 10000 : 40000, snapshots = 5;
+  for (int s = 0; s < snapshots; ++s) {
+    Particles<D> p;
+    for (int i = 0; i < grains; ++i) {
+      const Vec<D> x = random_point<D>(rng, spec, 0.0);
+      Vec<D> v;
+      for (int a = 0; a < D; ++a) v[a] = gauss(rng);
+      if constexpr (D == 3)
+        v += 0.5 * Vec<3>(x.x(), x.y(), 0.0).normalized() - Vec<3>(0, 0, 0.3);
+      else
+        v += Vec<2>(-0.3, x.y() > 0 ? 0.5 : -0.5);
+      p.add(i, GrainKind::kFree, x, v, 0.05, mass);
+    }
+    acc.sample(p, {}, 0.0);
+  }
+  const Table f = acc.fields({});
+  const auto& axes = FieldAccumulator<D>::Coordinates::kAxes;
+  for (std::size_t bin = 0; bin < f.rows(); ++bin) {
+    SCOPED_TRACE(bin);
+    const double n = f.at(bin, "n");
+    const double count = n * acc.layout().at(bin, "volume") * snapshots;
+    ASSERT_GT(count, 2000.0);
+    const double diag_tol = 5.0 * std::sqrt(2.0 / count), off_tol = 5.0 / std::sqrt(count);
+    EXPECT_NEAR(f.at(bin, "T_g") / temperature, 1.0, diag_tol);
+    for (int a = 0; a < D; ++a) {
+      const std::string ax(axes[a]);
+      EXPECT_NEAR(f.at(bin, "T_alpha." + ax) / temperature, 1.0, diag_tol);
+      for (int b = 0; b < D; ++b) {
+        const double s =
+            f.at(bin, "stress_kinetic." + ax + std::string(axes[b])) / (n * temperature);
+        EXPECT_NEAR(s, a == b ? 1.0 : 0.0, a == b ? diag_tol : off_tol);
+      }
+    }
+    // The mean flow itself is measured, not counted as temperature.
+    if constexpr (D == 3) {
+      EXPECT_NEAR(f.at(bin, "v.r"), 0.5, 0.01);
+      EXPECT_NEAR(f.at(bin, "v.z"), -0.3, 0.01);
+    }
+    // Without transfers there is no contact information.
+    EXPECT_TRUE(
+        std::isnan(f.at(bin, "stress_contact." + std::string(axes[0]) + std::string(axes[0]))));
+  }
+}
+
+// A linear velocity field v_lat = g h, v_h = k lat (3D: v_r = g h, v_z = k r; 2D: v_y = g h,
+// v_x = k y) has the shear rate (g + k)/2 exactly, wherever the grains are: the half-bin
+// differences are divided by the mean positions' differences.
+TYPED_TEST(FieldAccumulatorTyped, LinearShearFieldGivesItsStrainRate) {
+  constexpr int D = TypeParam::value;
+  const BinSpec spec = spec_for(D);
+  FieldAccumulator<D> acc(spec);
+  std::mt19937_64 rng(51);
+  const double g = 0.3, k = -0.08;
+  Particles<D> p;
+  BinSpec wide = spec;  // grains also half a bin beyond the lateral ends
+  wide.target_radius += 0.5 * spec.target_radius / 5;  // half a bin width (R_tar/5)
+  for (int i = 0; i < 20000; ++i) {
+    const Vec<D> x = random_point<D>(rng, wide, 0.0);
+    Vec<D> v;
+    if constexpr (D == 3) {
+      const double r = std::hypot(x[0], x[1]);
+      v << g * (x.z() - 0.5) * x.x() / r, g * (x.z() - 0.5) * x.y() / r, k * r;
+    } else {
+      v << k * x.y(), g * (x.x() - 0.5);
+    }
+    p.add(i, GrainKind::kFree, x, v, 0.05, 1.0);
+  }
+  acc.sample(p, {}, 0.0);
+  const Table f = acc.fields({});
+  for (std::size_t bin = 0; bin < f.rows(); ++bin)
+    EXPECT_NEAR(f.at(bin, "D"), 0.5 * (g + k), 1e-10) << "bin " << bin;
+}
+
+// Every grain inside the mesh: the bins' n V add up to the grain count and phi V to the grains'
+// total volume (exact shares, not centre counting), however the grains straddle the borders.
+TYPED_TEST(FieldAccumulatorTyped, BinnedCountAndVolumeSumToTheTotals) {
+  constexpr int D = TypeParam::value;
+  const BinSpec spec = spec_for(D);
+  FieldAccumulator<D> acc(spec);
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> radius(0.4, 0.5);
+  Particles<D> p;
+  double volume = 0.0;
+  for (int i = 0; i < 3000; ++i) {
+    const double r = radius(rng);
+    p.add(i, GrainKind::kFree, random_point<D>(rng, spec, 0.5), Vec<D>::Zero(), r, 1.0 + i % 3);
+    volume += Dim<D>::volume(r);
+  }
+  // A wall grain is not part of the flow.
+  p.add(9999, GrainKind::kWall, random_point<D>(rng, spec, 0.5), Vec<D>::Zero(), 0.5, 1.0);
+  acc.sample(p, {}, 0.0);
+  acc.sample(p, {}, 0.0);  // two snapshots: the averages are per snapshot
+  const Table f = acc.fields({});
+  const Table layout = acc.layout();
+  double count = 0.0, grain_volume = 0.0;
+  for (std::size_t bin = 0; bin < f.rows(); ++bin) {
+    count += f.at(bin, "n") * layout.at(bin, "volume");
+    grain_volume += f.at(bin, "phi") * layout.at(bin, "volume");
+  }
+  EXPECT_NEAR(count, 3000.0, 1e-9);
+  EXPECT_NEAR(grain_volume, volume, 1e-8 * volume);
+}
+
+}  // namespace
+}  // namespace granjet::analysis

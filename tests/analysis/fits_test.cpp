@@ -1,0 +1,127 @@
+// The fits recover the parameters of noisy synthetic data within their error bars, and the error
+// bars are calibrated (about 68% of repeated fits lie within one standard error).
+#include "analysis/fits.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace granjet::analysis {
+namespace {
+
+struct Synthetic {
+  std::vector<double> x, y;
+};
+
+// n points, x log-spaced over [lo, hi], y = law(x) + Gaussian noise of deviation `noise`.
+Synthetic make_data(const std::function<double(double)>& law, double lo, double hi, int n,
+                    double noise, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss(0.0, noise);
+  Synthetic s;
+  for (int k = 0; k < n; ++k) {
+    const double x = lo * std::pow(hi / lo, k / (n - 1.0));
+    s.x.push_back(x);
+    s.y.push_back(law(x) + gauss(rng));
+  }
+  return s;
+}
+
+// Every parameter within 3 standard errors of its true value (a 0.3% chance per parameter of a
+// false failure for a correct fit; the seeds are fixed, so a pass is reproducible), and the
+// standard errors finite and small against the values.
+void expect_recovered(const FitResult& fit, const std::vector<double>& truth) {
+  SCOPED_TRACE(fit.law);
+  ASSERT_TRUE(fit.converged);
+  ASSERT_EQ(fit.value.size(), static_cast<Eigen::Index>(truth.size()));
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    SCOPED_TRACE(fit.parameters[k]);
+    ASSERT_TRUE(std::isfinite(fit.error[k]));
+    EXPECT_GT(fit.error[k], 0.0);
+    EXPECT_LT(fit.error[k], 0.2 * std::abs(truth[k]));
+    EXPECT_LT(std::abs(fit.value[k] - truth[k]), 3.0 * fit.error[k]);
+  }
+}
+
+TEST(Fits, Eq6_2_PhiOfITRecovered) {
+  const auto d =
+      make_data([](double i) { return packing_law(i, 0.82, 0.45, 1.6); }, 0.02, 0.8, 40, 0.003, 11);
+  expect_recovered(fit_phi_of_i_t(d.x, d.y), {0.82, 0.45, 1.6});
+}
+
+TEST(Fits, Eq6_3_PhiOfISRecovered) {
+  const auto d =
+      make_data([](double i) { return packing_law(i, 0.80, 0.3, 2.5); }, 0.01, 1.0, 40, 0.003, 12);
+  const FitResult fit = fit_phi_of_i_s(d.x, d.y);
+  expect_recovered(fit, {0.80, 0.3, 2.5});
+  EXPECT_EQ(fit.parameters, (std::vector<std::string>{"phi_s", "a_s", "alpha_s"}));
+}
+
+TEST(Fits, Eq6_9_SaturatingFrictionRecovered) {
+  const auto d = make_data([](double i) { return friction_saturating(i, 0.25, 0.7, 0.3); }, 0.01,
+                           5.0, 40, 0.005, 13);
+  const FitResult fit = fit_mu_saturating(d.x, d.y);
+  expect_recovered(fit, {0.25, 0.7, 0.3});
+  EXPECT_EQ(fit.law, "6.9");
+}
+
+TEST(Fits, Eq6_10_PowerFrictionRecovered) {
+  const auto d = make_data([](double i) { return friction_power(i, 0.2, 0.6, 0.7); }, 0.01, 1.0, 40,
+                           0.005, 14);
+  expect_recovered(fit_mu_power(d.x, d.y), {0.2, 0.6, 0.7});
+}
+
+TEST(Fits, LinearFrictionThroughOriginRecovered) {
+  const auto d = make_data([](double i) { return 1.3 * i; }, 0.01, 0.3, 20, 0.01, 15);
+  expect_recovered(fit_mu_linear(d.x, d.y), {1.3});
+}
+
+TEST(Fits, ScatteringAngleInterpolationRecovered) {
+  // psi0 rises as C1 X from C2 and saturates at C0 (X = D_tar/D_jet).
+  const auto d = make_data([](double x) { return scattering_angle_law(x, 1.9, 1.2, 0.3); }, 0.2,
+                           4.0, 30, 0.01, 16);
+  const FitResult fit = fit_scattering_angle(d.x, d.y);
+  expect_recovered(fit, {1.9, 1.2, 0.3});
+  EXPECT_NEAR(scattering_angle_law(0.0, 1.9, 1.2, 0.3), 0.3, 1e-15);  // C2 at X = 0
+  EXPECT_NEAR(scattering_angle_law(1e3, 1.9, 1.2, 0.3), 1.9, 1e-12);  // C0 for X -> infinity
+}
+
+TEST(Fits, NonFinitePointsAndNonPositiveISkipped) {
+  auto d = make_data([](double i) { return friction_power(i, 0.2, 0.6, 0.7); }, 0.01, 1.0, 30,
+                     0.005, 17);
+  d.x.push_back(-0.5);  // power laws are undefined for I <= 0
+  d.y.push_back(0.3);
+  d.x.push_back(0.5);
+  d.y.push_back(std::nan(""));  // an empty bin
+  EXPECT_EQ(fit_mu_power(d.x, d.y).points, 30);
+}
+
+TEST(Fits, TooFewPointsGiveNaNErrors) {
+  const std::vector<double> x{0.1, 0.2}, y{0.3, 0.4};
+  const FitResult fit = fit_mu_saturating(x, y);
+  EXPECT_TRUE(std::isnan(fit.error[0]));
+}
+
+// cov = s^2 (J^T J)^-1 is calibrated: over 200 noisy data sets, the fraction of fits whose I_0
+// lies within one standard error of the truth is 0.683 up to its binomial spread 0.033
+// (the window below is about 3 of those), and the same for mu_s.
+TEST(Fits, Eq6_9_StandardErrorsAreCalibrated) {
+  constexpr int kTrials = 200;
+  int mu_s_within = 0, i_0_within = 0;
+  for (int t = 0; t < kTrials; ++t) {
+    const auto d = make_data([](double i) { return friction_saturating(i, 0.25, 0.7, 0.3); }, 0.01,
+                             5.0, 25, 0.01, 1000 + t);
+    const FitResult fit = fit_mu_saturating(d.x, d.y);
+    mu_s_within += std::abs(fit["mu_s"] - 0.25) < fit.error_of("mu_s");
+    i_0_within += std::abs(fit["I_0"] - 0.3) < fit.error_of("I_0");
+  }
+  EXPECT_NEAR(mu_s_within / double(kTrials), 0.683, 0.1);
+  EXPECT_NEAR(i_0_within / double(kTrials), 0.683, 0.1);
+}
+
+}  // namespace
+}  // namespace granjet::analysis

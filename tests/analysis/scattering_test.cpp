@@ -1,0 +1,117 @@
+// psi0 and v2 of synthetic outgoing velocity sets (spec §6), and the scaled velocity
+// distributions' flatness (Gaussian 3, exponential 6).
+#include "analysis/scattering.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "analysis/velocity_distribution.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A 3D velocity at polar angle psi from the incident direction -e_z, azimuth phi, speed u.
+Vec<3> outgoing(double psi, double phi, double u) {
+  return u * Vec<3>(std::sin(psi) * std::cos(phi), std::sin(psi) * std::sin(phi), -std::cos(psi));
+}
+
+TEST(Scattering, Psi0OfACone) {
+  std::mt19937_64 rng(71);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (double psi : {0.3, kPi / 2, 2.0}) {  // forward cone, along the wall, curled back
+    std::vector<Vec<3>> v;
+    for (int k = 0; k < 100; ++k) v.push_back(outgoing(psi, 2 * kPi * u(rng), 0.5 + u(rng)));
+    EXPECT_NEAR(scattering_angle<3>(v), psi, 1e-12);
+  }
+}
+
+// Directions spread symmetrically by +-delta about psi: the mean unit vector keeps the angle.
+TEST(Scattering, Psi0OfASymmetricSpreadIsItsCentre) {
+  std::vector<Vec<3>> v;
+  for (double delta : {0.0, 0.1, 0.25})
+    for (double sign : {-1.0, 1.0}) v.push_back(outgoing(1.1 + sign * delta, 0.7 * delta, 2.0));
+  EXPECT_NEAR(scattering_angle<3>(v), 1.1, 1e-12);
+  // 2D: the two sheets along +y and -y, at 60 degrees from the incident -e_x.
+  const std::vector<Vec<2>> sheets{{-0.5, std::sqrt(0.75)}, {-1.0, -std::sqrt(3.0)}};
+  EXPECT_NEAR(scattering_angle<2>(sheets), kPi / 3, 1e-12);
+  EXPECT_TRUE(std::isnan(scattering_angle<2>({})));
+}
+
+// Azimuths drawn from dN/dphi ~ 1 + 2 v2 cos 2phi by rejection: <cos 2phi> estimates v2 with
+// standard error sqrt(1/(2N)) = 0.005; tolerance 5 of those.
+TEST(Scattering, V2OfAnAnisotropicAzimuthalDistribution) {
+  std::mt19937_64 rng(72);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (double v2 : {0.0, 0.15, -0.2}) {
+    std::vector<double> phi;
+    while (phi.size() < 20000) {
+      const double p = 2 * kPi * u(rng);
+      if (u(rng) * (1 + 2 * std::abs(v2)) < 1 + 2 * v2 * std::cos(2 * p)) phi.push_back(p);
+    }
+    EXPECT_NEAR(anisotropy_v2(phi), v2, 0.025);
+  }
+}
+
+TEST(Scattering, MeasurementRecordsEachScatteredGrainOnce) {
+  ScatteringMeasurement<3> m(10.0, kPi / 2);  // phi measured from the y axis
+  Particles<3> p;
+  p.add(0, GrainKind::kFree, {0.0, 12.0, 1.0}, outgoing(1.2, kPi / 2, 1.0), 0.5, 1.0);
+  p.add(1, GrainKind::kFree, {0.0, -15.0, 1.0}, outgoing(1.0, -kPi / 2, 1.0), 0.5, 1.0);
+  p.add(2, GrainKind::kFree, {3.0, 0.0, 1.0}, outgoing(0.1, 0.0, 1.0), 0.5, 1.0);  // inside
+  p.add(3, GrainKind::kWall, {20.0, 0.0, 0.0}, Vec<3>::Zero(), 0.5, 1.0);          // wall
+  m.observe(p);
+  p.velocity()[0] = outgoing(0.2, kPi / 2, 1.0);  // seen again later: not recorded again
+  m.observe(p);
+  ASSERT_EQ(m.count(), 2u);
+  EXPECT_NEAR(m.psi0(), 1.1, 1e-12);
+  EXPECT_NEAR(m.v2(), 1.0, 1e-12);  // both on the reference axis: cos 2phi = 1
+  const std::vector<double> dn = m.azimuthal_distribution(4);
+  double mean = 0.0;
+  for (double x : dn) mean += x / dn.size();
+  EXPECT_NEAR(mean, 1.0, 1e-12);
+  EXPECT_EQ(dn[0] + dn[2], 4.0);  // phi = 0 and phi = pi
+}
+
+// Two bins of different means and temperatures: after per-bin scaling the pooled Gaussian has
+// flatness 3 (standard error sqrt(96/N) = 0.05 for N = 40000; tolerance 5 of those). Pooling
+// without the scaling would give 3 (1 + 81)/2 / ((1 + 9)/2)^2 = 4.9.
+TEST(VelocityDistribution, ScaledGaussianFlatnessIsThree) {
+  VelocityDistribution<2> vdf(2);
+  std::mt19937_64 rng(73);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int k = 0; k < 20000; ++k) {
+    vdf.add(0, Vec<2>(0.5 + g(rng), g(rng)));
+    vdf.add(1, Vec<2>(-2.0 + 3.0 * g(rng), 3.0 * g(rng)));
+  }
+  EXPECT_NEAR(vdf.flatness(0), 3.0, 0.25);
+  EXPECT_NEAR(vdf.flatness(1), 3.0, 0.25);
+  EXPECT_NEAR(vdf.flatness(0, 1), 3.0, 0.35);
+  // The density of the scaled values at 0 is 1/sqrt(2 pi) = 0.399 (bins of 0.25: the mean over
+  // the bin is 0.397; the standard error of one bin's count is 1.3%).
+  const std::vector<double> edges{-0.125, 0.125};
+  EXPECT_NEAR(vdf.density(0, edges)[0], 0.397, 0.025);
+}
+
+// Laplace (exponential) velocities: flatness 6; the standard error is sqrt(2484/N) = 0.08 for
+// N = 400000 (E c^8 = 8!/16 = 2520 at unit variance); tolerance 5 of those.
+TEST(VelocityDistribution, ScaledExponentialFlatnessIsSix) {
+  VelocityDistribution<3> vdf(1);
+  std::mt19937_64 rng(74);
+  std::exponential_distribution<double> e(1.0);
+  std::bernoulli_distribution sign(0.5);
+  for (int k = 0; k < 400000; ++k) {
+    const double c = sign(rng) ? e(rng) : -e(rng);
+    vdf.add(0, Vec<3>(c, 0.0, 1.0));
+  }
+  EXPECT_NEAR(vdf.flatness(0), 6.0, 0.4);
+  EXPECT_TRUE(std::isnan(vdf.flatness(1)));  // no spread: nothing to scale
+}
+
+}  // namespace
+}  // namespace granjet::analysis

@@ -1,0 +1,62 @@
+// The analysis through the command: inline during `run` (fields in the summary and the file)
+// and afterwards with `analyze` on stored frames, which must agree on the kinetic fields when
+// they sample the same times.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "analysis/field_writer.hpp"
+
+namespace granjet {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json read_json(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+int run(const std::string& args) {
+  return WEXITSTATUS(std::system((std::string(GRANJET_BINARY) + " " + args + " > /dev/null").c_str()));
+}
+
+TEST(AnalysisCommand, InlineFieldsAndStoredFrameAnalysisAgreeOnKineticFields) {
+  const fs::path dir = fs::temp_directory_path() / "granjet_analysis_command";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path h5 = dir / "jet.h5";
+  ASSERT_EQ(run("run " + std::string(GRANJET_SCENES_DIR) + "/jet3d.ini --quiet" +
+                " --set jet.grains=3000 --set run.t_end=8 --set output.interval=0.5" +
+                " --set analysis.window_start=4 --set analysis.window_end=8" +
+                " --set analysis.sample_interval=0.5 --out " + h5.string() + " --summary " +
+                (dir / "run.json").string()),
+            0);
+  const nlohmann::json inline_fields = read_json(dir / "run.json")["analysis"];
+  ASSERT_EQ(inline_fields["bins"].size(), 5u);  // the 3D rings
+  EXPECT_TRUE(fs::exists(dir / "jet.fields.xmf"));
+  const std::vector<double> stored_p = analysis::read_analysis_values(h5, "/fields/P/mean");
+  ASSERT_EQ(stored_p.size(), 5u);
+  EXPECT_GT(stored_p[0], 0.0);  // the jet presses on the target: positive pressure at the axis
+  EXPECT_DOUBLE_EQ(stored_p[0], inline_fields["bins"][0]["P"]["mean"].get<double>());
+
+  ASSERT_EQ(run("analyze " + h5.string() + " --summary " + (dir / "frames.json").string()), 0);
+  const nlohmann::json frames = read_json(dir / "frames.json");
+  for (std::size_t bin = 0; bin < 5; ++bin) {
+    SCOPED_TRACE(bin);
+    for (const char* field : {"n", "phi", "T_g"}) {
+      const double a = inline_fields["bins"][bin][field]["mean"].get<double>();
+      const double b = frames["bins"][bin][field]["mean"].get<double>();
+      EXPECT_NEAR(a, b, 1e-12 * std::abs(a)) << field;
+    }
+    EXPECT_TRUE(frames["bins"][bin]["stress_contact"]["rz"]["mean"].is_null());  // none stored
+  }
+  EXPECT_EQ(run("analyze " + h5.string() + " --window 9:10"), 2);  // no frame in the window
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace granjet
