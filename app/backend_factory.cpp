@@ -1,18 +1,38 @@
 #include "app/backend_factory.hpp"
 
 #include "core/errors.hpp"
+#include "event_driven/ed_simulator.hpp"
+#include "event_driven/scene_support.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace granjet {
 
-std::vector<std::string> backend_names() { return {"soft_dem"}; }
+std::vector<std::string> backend_names() { return {"soft_dem", "event_driven"}; }
 
-template <int D>
-std::unique_ptr<Simulator<D>> make_simulator(const std::string& backend, const Scene& scene) {
-  if (backend == "soft_dem") return dem::make_dem_simulator<D>(scene);
+void check_backend(const std::string& backend, const Scene& scene) {
+  if (backend == "soft_dem") {
+    // Periodic boundaries in the DEM are a later issue.
+    if (scene.periodic())
+      throw InputError("--backend", "soft_dem cannot run the periodic scenes (scene.kind = gas, "
+                                    "hcs) yet; use --backend event_driven");
+    return;
+  }
+  if (backend == "event_driven") return;  // runs every scene (event_driven/scene_support.hpp)
   std::string allowed;
   for (const std::string& name : backend_names()) allowed += (allowed.empty() ? "" : ", ") + name;
   throw InputError("--backend", "'" + backend + "' is not available; allowed: " + allowed);
+}
+
+std::vector<std::string> backend_notes(const std::string& backend, const Scene& scene) {
+  if (backend == "event_driven") return {ed::scene_note(scene)};
+  return {};
+}
+
+template <int D>
+std::unique_ptr<Simulator<D>> make_simulator(const std::string& backend, const Scene& scene) {
+  check_backend(backend, scene);
+  if (backend == "event_driven") return ed::make_ed_simulator<D>(scene);
+  return dem::make_dem_simulator<D>(scene);
 }
 
 template std::unique_ptr<Simulator<2>> make_simulator<2>(const std::string&, const Scene&);

@@ -14,6 +14,12 @@ std::vector<std::string> backend_names();
 
 // Throws InputError naming --backend when the name is unknown or the backend cannot run the
 // scene.
+void check_backend(const std::string& backend, const Scene& scene);
+
+// What the backend ignores or replaces in the scene, as lines for the user (may be empty).
+std::vector<std::string> backend_notes(const std::string& backend, const Scene& scene);
+
+// Calls check_backend first.
 template <int D>
 std::unique_ptr<Simulator<D>> make_simulator(const std::string& backend, const Scene& scene);
 

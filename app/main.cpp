@@ -1,10 +1,12 @@
-// The granjet command: run | info | --help | --version. Exit codes: 0 done, 1 failure
+// The granjet command: run | compare | info | --help | --version. Exit codes: 0 done, 1 failure
 // (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as .partial).
 #include <boost/program_options.hpp>
 #include <iostream>
 
 #include "analysis/h5md_reader.hpp"
+#include "app/analyze_command.hpp"
 #include "app/backend_factory.hpp"
+#include "app/compare_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
@@ -17,7 +19,9 @@ namespace {
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
               [--summary run.json] [--quiet]
+  granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet info run.h5 [--scene]
+  granjet analyze run.h5 [--window t0:t1] [--summary fields.json]
   granjet --help | --version
 )";
 
@@ -26,17 +30,35 @@ void print_help() {
             << ": granular jets on a soft-sphere DEM and an event-driven backend\n\n"
             << kUsage << R"(
 run options:
-  --backend NAME    soft_dem (default)
+  --backend NAME    soft_dem (default) or event_driven (hard spheres; the only one for the
+                    periodic scenes, scene.kind = gas | hcs)
   --set KEY=VALUE   override a scene key (repeatable)
   --out FILE        HDF5/H5MD output (default: SCENE's stem + .h5); an .xmf sidecar
                     beside it opens in ParaView (XDMF Reader)
   --summary FILE    JSON summary of the run
   --quiet           no progress rows
+compare options (every backend on one scene):
+  --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
+                    with the summaries side by side (also printed as a table)
 info options:
   --scene           print only the stored scene (a scene file that redoes the run)
+analyze options (measurements of the stored frames; contact stress needs inline analysis):
+  --window T0:T1    time-average window (default: the scene's analysis.window_*)
+  --summary FILE    JSON of the fields and global measurements
 
 scene keys (INI sections [scene], [contact], ... in the scene file):
 )" << granjet::scene_keys_help();
+}
+
+// Parses a subcommand's arguments; `positional` names its one positional argument.
+po::variables_map parse(const std::vector<std::string>& args, const po::options_description& desc,
+                        const char* positional) {
+  po::positional_options_description pos;
+  pos.add(positional, 1);
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(desc).positional(pos).run(), vm);
+  po::notify(vm);
+  return vm;
 }
 
 int run(const std::vector<std::string>& args) {
@@ -46,15 +68,44 @@ int run(const std::vector<std::string>& args) {
       "backend", po::value(&o.backend))("set", po::value(&o.overrides)->composing())(
       "out", po::value<std::string>())("summary", po::value<std::string>())("quiet",
                                                                             po::bool_switch(&o.quiet));
-  po::positional_options_description pos;
-  pos.add("scene", 1);
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(desc).positional(pos).run(), vm);
-  po::notify(vm);
+  const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   return granjet::run_command(o, std::cout);
+}
+
+int analyze(const std::vector<std::string>& args) {
+  granjet::AnalyzeOptions o;
+  po::options_description desc;
+  desc.add_options()("file", po::value<std::string>()->required())(
+      "window", po::value<std::string>())("summary", po::value<std::string>());
+  const po::variables_map vm = parse(args, desc, "file");
+  o.file = vm["file"].as<std::string>();
+  if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
+  if (vm.count("window")) {
+    const std::string w = vm["window"].as<std::string>();
+    const auto colon = w.find(':');
+    try {
+      if (colon == std::string::npos) throw std::invalid_argument(w);
+      o.window = {std::stod(w.substr(0, colon)), std::stod(w.substr(colon + 1))};
+    } catch (const std::logic_error&) {
+      throw granjet::InputError("--window", "'" + w + "' is not t0:t1");
+    }
+  }
+  return granjet::analyze_command(o, std::cout);
+}
+
+int compare(const std::vector<std::string>& args) {
+  granjet::CompareOptions o;
+  po::options_description desc;
+  desc.add_options()("scene", po::value<std::string>()->required())(
+      "out", po::value<std::string>()->required())("set", po::value(&o.overrides)->composing())(
+      "quiet", po::bool_switch(&o.quiet));
+  const po::variables_map vm = parse(args, desc, "scene");
+  o.scene_file = vm["scene"].as<std::string>();
+  o.out_dir = vm["out"].as<std::string>();
+  return granjet::compare_command(o, std::cout);
 }
 
 int info(const std::vector<std::string>& args) {
@@ -62,11 +113,7 @@ int info(const std::vector<std::string>& args) {
   po::options_description desc;
   desc.add_options()("file", po::value<std::string>()->required())("scene",
                                                                    po::bool_switch(&scene_only));
-  po::positional_options_description pos;
-  pos.add("file", 1);
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(desc).positional(pos).run(), vm);
-  po::notify(vm);
+  const po::variables_map vm = parse(args, desc, "file");
   const auto summary = granjet::analysis::read_summary(vm["file"].as<std::string>());
   if (scene_only)
     std::cout << summary.scene_ini;
@@ -95,7 +142,9 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "run") return run(args);
+    if (command == "compare") return compare(args);
     if (command == "info") return info(args);
+    if (command == "analyze") return analyze(args);
     std::cerr << "granjet: unknown command '" << command << "'\n" << kUsage;
     return 2;
   } catch (const granjet::InputError& e) {

@@ -5,10 +5,16 @@
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "analysis/binary_collision.hpp"
+#include "analysis/analysis_json.hpp"
+#include "analysis/field_writer.hpp"
 #include "analysis/h5md_writer.hpp"
+#include "analysis/kinetic_theory.hpp"
 #include "app/backend_factory.hpp"
+#include "app/gas_observer.hpp"
+#include "app/inline_analysis.hpp"
 #include "app/progress_table.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
@@ -22,6 +28,41 @@ analysis::Observables observables(const Simulator<D>& sim) {
   const EnergyBalance e = sim.energy();
   return {e.kinetic, e.rotational, e.elastic, e.dissipated,
           static_cast<std::int64_t>(sim.particles().size())};
+}
+
+// The H5MD step of a frame: DEM counts time steps, the event-driven backend events.
+std::int64_t frame_step(const SimStats& s) { return s.steps > 0 ? s.steps : s.events; }
+
+bool event_driven(const std::string& backend) { return backend == "event_driven"; }
+
+// Hard grains never overlap, so the tracker's gap crossings miss their collision: e from the one
+// collision's line of centres and the velocities before (t = 0) and after (the end of the run).
+template <int D>
+std::optional<double> hard_binary_restitution(const Particles<D>& before, const Particles<D>& after,
+                                              const std::vector<PairImpulse<D>>& collisions) {
+  if (collisions.size() != 1 || before.size() != 2 || after.size() != 2) return std::nullopt;
+  const PairImpulse<D>& c = collisions.front();
+  const Vec<D> n = (c.position_j - c.position_i).normalized();
+  const auto v_ij = [&](const Particles<D>& p) {
+    const std::size_t i = p.id()[0] == c.i ? 0 : 1;
+    return Vec<D>(p.velocity()[i] - p.velocity()[1 - i]);
+  };
+  return -n.dot(v_ij(after)) / n.dot(v_ij(before));
+}
+
+// The inline analysis of one run as an ensemble of one: /fields and /analysis in the run's
+// file, a .fields.xmf beside it, and the JSON for the summary.
+template <int D>
+nlohmann::json store_analysis(const InlineAnalysis<D>& fields, const std::filesystem::path& file) {
+  const std::vector<analysis::RunResult> runs{fields.finish()};
+  const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
+  analysis::write_analysis_hdf5(file, result);
+  std::filesystem::path xmf = file;
+  xmf.replace_extension(".fields.xmf");
+  analysis::write_fields_xdmf(xmf, file.filename().string(), result);
+  nlohmann::json j = analysis::to_json(result);
+  j["seconds"] = fields.seconds();
+  return j;
 }
 
 // Writes the JSON next to its final name and renames it, so a reader never sees half a file.
@@ -57,6 +98,12 @@ nlohmann::json summary_json(const Scene& scene, const std::string& backend,
   j["wall_seconds"] = wall_seconds;
   j["particle_steps"] = s.particle_steps;
   j["particle_steps_per_second"] = wall_seconds > 0.0 ? s.particle_steps / wall_seconds : 0.0;
+  if (event_driven(backend)) {
+    j["events"] = s.events;
+    j["collisions"] = s.collisions;
+    j["cell_crossings"] = s.cell_crossings;
+    j["collisions_per_second"] = wall_seconds > 0.0 ? s.collisions / wall_seconds : 0.0;
+  }
   j["energy"] = {{"kinetic", e.kinetic},   {"rotational", e.rotational},
                  {"elastic", e.elastic},   {"removed", e.removed},
                  {"dissipated", e.dissipated}};
@@ -67,6 +114,8 @@ template <int D>
 int run_scene(const Scene& scene, const RunOptions& options, const std::filesystem::path& out_file,
               std::ostream& out) {
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, scene);
+  for (const std::string& note : backend_notes(options.backend, scene))
+    std::cerr << "granjet: " << note << "\n";
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
   analysis::RunMetadata meta;
   meta.creator_version = kVersion;
@@ -76,13 +125,21 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   analysis::H5mdWriter<D> writer(out_file, meta, sim->particles().size());
   writer.write_frame(0, sim->time(), sim->particles());
   writer.write_observables(0, sim->time(), observables(*sim));
+  const Particles<D> initial = sim->particles();
 
   const double t_end = scene.run.t_end;
   const double dt = scene.dt();
   const double kInf = std::numeric_limits<double>::infinity();
   const bool binary = scene.kind == SceneKind::kBinary;
   analysis::BinaryCollisionTracker<D> tracker;
-  if (binary) tracker.observe(sim->particles(), sim->time());
+  if (binary) {
+    tracker.observe(sim->particles(), sim->time());
+    sim->record_transfers(true);
+  }
+  std::optional<GasObserver<D>> gas;
+  if (scene.periodic()) gas.emplace(scene, *sim);
+  std::optional<InlineAnalysis<D>> fields;
+  if (scene.kind == SceneKind::kJet && scene.analysis.enabled) fields.emplace(scene, *sim);
   double next_output = scene.output.interval > 0.0 ? scene.output.interval : kInf;
   double next_progress = scene.run.progress_interval;
   double last_output = 0.0;
@@ -92,12 +149,17 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     while (sim->time() < t_end - 0.5 * dt) {
       double target = std::min({t_end, next_output, next_progress});
       if (binary) target = std::min(target, sim->time() + dt);  // the tracker samples every step
+      if (gas) target = std::min(target, std::max(gas->next_time(), sim->time() + 0.5 * dt));
+      if (fields)
+        target = std::min(target, std::max(fields->next_time(), sim->time() + 0.5 * dt));
       sim->advance_to(target);
       const double t = sim->time();
       if (binary) tracker.observe(sim->particles(), t);
+      if (gas) gas->observe(*sim);
+      if (fields) fields->observe(*sim);
       if (t >= next_output - 0.5 * dt || t >= t_end - 0.5 * dt) {
-        writer.write_frame(sim->stats().steps, t, sim->particles());
-        writer.write_observables(sim->stats().steps, t, observables(*sim));
+        writer.write_frame(frame_step(sim->stats()), t, sim->particles());
+        writer.write_observables(frame_step(sim->stats()), t, observables(*sim));
         last_output = t;
         while (next_output <= t + 0.5 * dt) next_output += scene.output.interval;
       }
@@ -107,8 +169,8 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       }
     }
     if (last_output < sim->time()) {
-      writer.write_frame(sim->stats().steps, sim->time(), sim->particles());
-      writer.write_observables(sim->stats().steps, sim->time(), observables(*sim));
+      writer.write_frame(frame_step(sim->stats()), sim->time(), sim->particles());
+      writer.write_observables(frame_step(sim->stats()), sim->time(), observables(*sim));
     }
   } catch (const BlowUpError& e) {
     const std::filesystem::path kept = writer.abandon(e.what());
@@ -123,17 +185,50 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
                            {"contact_time", tracker.contact_time()}};
     summary["requested"] = {{"restitution", scene.contact.restitution},
                             {"contact_time", scene.contact.contact_time}};
+  } else if (binary) {
+    std::vector<PairImpulse<D>> collisions;
+    sim->collect_transfers(collisions);
+    if (const auto e = hard_binary_restitution(initial, sim->particles(), collisions)) {
+      summary["measured"] = {{"restitution", *e}};
+      summary["requested"] = {{"restitution", scene.contact.restitution}};
+    }
+  }
+  if (gas && gas->samples() > 1) {
+    namespace kinetic = analysis::kinetic;
+    summary["measured"] = {{"temperature", gas->temperature()}};
+    if (scene.kind == SceneKind::kGas) {
+      summary["measured"]["compressibility"] = gas->compressibility();
+      // Elastic hard spheres: Carnahan-Starling; hard disks: Henderson.
+      summary["theory"] = {{"compressibility", D == 3 ? kinetic::carnahan_starling(scene.gas.phi)
+                                                      : kinetic::henderson(scene.gas.phi)}};
+    } else {
+      summary["measured"]["cooling_per_collision"] = gas->cooling_per_collision();
+      summary["theory"] = {{"cooling_per_collision",
+                            kinetic::cooling_per_collision(scene.contact.restitution, D)}};
+    }
   }
   if (status == "complete") {
     writer.finish();
     summary["output"] = out_file.string();
+    if (fields) summary["analysis"] = store_analysis<D>(*fields, out_file);
   }
   if (!options.quiet || status != "complete") {
-    out << "loop time " << wall << " s for " << sim->stats().steps << " steps, "
-        << summary["particle_steps_per_second"].get<double>() << " particle-steps/s\n";
-    if (summary.contains("measured"))
-      out << "measured restitution " << tracker.restitution() << ", contact time "
-          << tracker.contact_time() << "\n";
+    const SimStats s = sim->stats();
+    if (event_driven(options.backend))
+      out << "loop time " << wall << " s for " << s.events << " events (" << s.collisions
+          << " collisions, " << s.cell_crossings << " cell crossings), "
+          << summary["collisions_per_second"].get<double>() << " collisions/s\n";
+    else
+      out << "loop time " << wall << " s for " << s.steps << " steps, "
+          << summary["particle_steps_per_second"].get<double>() << " particle-steps/s\n";
+    if (summary.contains("measured")) {
+      out << "measured";
+      for (const auto& [key, value] : summary["measured"].items()) out << " " << key << " " << value;
+      if (summary.contains("theory"))
+        for (const auto& [key, value] : summary["theory"].items())
+          out << " (theory " << key << " " << value << ")";
+      out << "\n";
+    }
   }
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
   return status == "complete" ? 0 : 3;

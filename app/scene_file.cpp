@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/initial_state.hpp"
 
 namespace granjet {
 namespace {
@@ -119,8 +120,13 @@ const std::vector<Key>& keys() {
     k.push_back({"scene.name", "label stored in outputs",
                  [](Scene& s, const std::string& v) { s.name = v; },
                  [](const Scene& s) { return s.name; }});
-    k.push_back(choice_key<SceneKind>("scene.kind", "what to build", FIELD(kind),
-                                      {{"jet", SceneKind::kJet}, {"binary", SceneKind::kBinary}}));
+    k.push_back(choice_key<SceneKind>(
+        "scene.kind", "what to build (gas, hcs: periodic boxes, event_driven backend)",
+        FIELD(kind),
+        {{"jet", SceneKind::kJet},
+         {"binary", SceneKind::kBinary},
+         {"gas", SceneKind::kGas},
+         {"hcs", SceneKind::kHcs}}));
     k.push_back(choice_key<int>("scene.dimension", "2 (disks) or 3 (spheres)", FIELD(dimension),
                                 {{"2", 2}, {"3", 3}}));
     k.push_back(real_key("contact.restitution", "binary restitution coefficient e",
@@ -184,8 +190,43 @@ const std::vector<Key>& keys() {
                          FIELD(region.radius), kPositive));
     k.push_back(real_key("region.below", "remove grains farther behind the target plane",
                          FIELD(region.below), kPositive));
+    k.push_back(real_key("gas.phi", "packing fraction of the periodic gas",
+                         FIELD(gas.phi), {0.0, true, 1.0, true}));
+    k.push_back(integer_key("gas.grains", "number of gas grains (d = m = 1)", FIELD(gas.grains),
+                            2));
+    k.push_back(real_key("gas.temperature", "initial granular temperature T = sum m v^2 / (D N)",
+                         FIELD(gas.temperature), kPositive));
+    k.push_back(real_key("gas.equilibration", "sim time before the measurements start",
+                         FIELD(gas.equilibration), kNonNegative));
+    k.push_back(real_key("gas.sample_interval", "sim time between temperature samples",
+                         FIELD(gas.sample_interval), kPositive));
+    k.push_back(choice_key<RestitutionLaw>(
+        "ed.restitution_law", "event_driven restitution law (spec §8)",
+        FIELD(ed.restitution_law),
+        {{"constant", RestitutionLaw::kConstant},
+         {"velocity_dependent", RestitutionLaw::kVelocityDependent},
+         {"tc_model", RestitutionLaw::kTcModel}}));
+    k.push_back(real_key("ed.v0",
+                         "velocity_dependent: e = 1 - (1 - e0)(v_n/v0)^(3/4) below v0, in u0",
+                         FIELD(ed.v0), kPositive));
+    k.push_back(real_key("ed.tc", "tc_model: elastic if either grain collided less than tc ago",
+                         FIELD(ed.tc), kNonNegative));
     k.push_back(real_key("output.interval", "sim time between stored frames (0: first and last)",
                          FIELD(output.interval), kNonNegative));
+    k.push_back(choice_key<bool>("analysis.enabled", "measure the fields of spec §6 during jet runs",
+                                 FIELD(analysis.enabled), {{"true", true}, {"false", false}}));
+    k.push_back(real_key("analysis.window_start", "start of the time average",
+                         FIELD(analysis.window_start), kNonNegative));
+    k.push_back(real_key("analysis.window_end", "end of the time average",
+                         FIELD(analysis.window_end), kPositive));
+    k.push_back(real_key("analysis.sample_interval", "sim time between samples",
+                         FIELD(analysis.sample_interval), kPositive));
+    k.push_back(integer_key("analysis.lateral_bins", "bins across the target (3D rings, 2D bins)",
+                            FIELD(analysis.lateral_bins), 1));
+    k.push_back(integer_key("analysis.layers", "layers stacked above the wall",
+                            FIELD(analysis.layers), 1));
+    k.push_back(real_key("analysis.layer_height", "height of a layer in d",
+                         FIELD(analysis.layer_height), kPositive));
     return k;
   }();
   return table;
@@ -204,6 +245,34 @@ void apply_override(Scene& scene, const std::string& assignment) {
   if (eq == std::string::npos)
     throw InputError("--set " + assignment, "expected section.key=value");
   find_key(assignment.substr(0, eq)).set(scene, assignment.substr(eq + 1));
+}
+
+// The starting lattice must not overlap, and the box must hold three cells of one diameter
+// (the event-driven cell list's stencil).
+template <int D>
+void validate_gas_lattice(const Scene& s) {
+  const GasLattice<D> lattice = gas_lattice<D>(s.gas);
+  if (lattice.box.minCoeff() < 3.0)
+    throw InputError("gas.grains", std::to_string(s.gas.grains) + " grains at gas.phi = " +
+                                       format_number(s.gas.phi) +
+                                       " make a box narrower than 3 diameters; add grains");
+  // The packing fraction scales as the lattice spacing to the power -D.
+  if (lattice.nearest < 1.0)
+    throw InputError("gas.phi", format_number(s.gas.phi) + " is too dense for the starting " +
+                                    (D == 3 ? "fcc" : "triangular") + " lattice of " +
+                                    std::to_string(s.gas.grains) + " grains; at most about " +
+                                    format_number(s.gas.phi * std::pow(lattice.nearest, D)));
+}
+
+void validate_gas(const Scene& s) {
+  if (s.dimension == 2)
+    validate_gas_lattice<2>(s);
+  else
+    validate_gas_lattice<3>(s);
+  if (s.gas.equilibration >= s.run.t_end)
+    throw InputError("gas.equilibration", format_number(s.gas.equilibration) +
+                                              " leaves nothing to measure: must be smaller than "
+                                              "run.t_end = " + format_number(s.run.t_end));
 }
 
 }  // namespace
@@ -237,9 +306,14 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
 }
 
 void validate_scene(const Scene& s) {
+  if (s.analysis.window_end <= s.analysis.window_start)
+    throw InputError("analysis.window_end",
+                     format_number(s.analysis.window_end) + " must be after analysis.window_start = " +
+                         format_number(s.analysis.window_start));
   if (s.dt() >= s.contact.contact_time)
     throw InputError("run.dt", format_number(s.dt()) + " must be smaller than contact.contact_time = " +
                                    format_number(s.contact.contact_time));
+  if (s.periodic()) validate_gas(s);
   if (s.kind == SceneKind::kJet && s.wall.diameter < s.jet.diameter)
     throw InputError("wall.diameter", "the target must be at least as wide as the jet (jet.diameter = " +
                                           format_number(s.jet.diameter) + ")");

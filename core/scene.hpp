@@ -87,6 +87,18 @@ struct EdSpec {
   double tc = 0.1;  // the soft contact time t_c of the study, the natural choice
 };
 
+// The measurements of spec §6, taken inline during a jet run. Defaults: the 3D study (5 rings
+// of width R_tar/5 in one 5 d layer, window 50..100); scenes/jet2d.ini sets the 2D study's.
+struct AnalysisSpec {
+  bool enabled = true;
+  double window_start = 50.0;
+  double window_end = 100.0;
+  double sample_interval = 0.5;
+  int lateral_bins = 5;  // 3D rings across 0..R_tar, 2D bins across -R_tar..R_tar
+  int layers = 1;        // stacked layers of layer_height above the wall
+  double layer_height = 5.0;
+};
+
 struct OutputSpec {
   double interval = 1.0;  // sim time between stored frames; 0 = initial and final only
 };
@@ -103,6 +115,7 @@ struct Scene {
   RegionSpec region;
   GasSpec gas;
   EdSpec ed;
+  AnalysisSpec analysis;
   OutputSpec output;
 
   double dt() const { return run.dt > 0.0 ? run.dt : 0.02 * contact.contact_time; }

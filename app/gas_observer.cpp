@@ -1,0 +1,64 @@
+#include "app/gas_observer.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace granjet {
+
+template <int D>
+GasObserver<D>::GasObserver(const Scene& scene, Simulator<D>& sim)
+    : start_(scene.gas.equilibration),
+      interval_(scene.gas.sample_interval),
+      next_(scene.gas.equilibration),
+      grains_(static_cast<double>(sim.particles().size())) {
+  observe(sim);
+}
+
+template <int D>
+void GasObserver<D>::observe(Simulator<D>& sim) {
+  const double t = sim.time();
+  if (!started_) {
+    if (t < start_) return;
+    started_ = true;
+    started_at_ = t;
+    sim.record_transfers(true);
+  }
+  transfers_.clear();
+  sim.collect_transfers(transfers_);
+  for (const PairImpulse<D>& j : transfers_)
+    virial_ += (j.position_i - j.position_j).dot(j.impulse);
+  last_time_ = t;
+  if (t < next_) return;
+  const double temperature = 2.0 * sim.energy().kinetic / (D * grains_);
+  const double x = 2.0 * static_cast<double>(sim.stats().collisions) / grains_;
+  const double y = std::log(temperature);
+  ++samples_;
+  sum_t_ += temperature;
+  sum_x_ += x;
+  sum_y_ += y;
+  sum_xx_ += x * x;
+  sum_xy_ += x * y;
+  while (next_ <= t) next_ += interval_;
+}
+
+template <int D>
+double GasObserver<D>::temperature() const {
+  return samples_ > 0 ? sum_t_ / samples_ : std::numeric_limits<double>::quiet_NaN();
+}
+
+template <int D>
+double GasObserver<D>::compressibility() const {
+  const double tau = last_time_ - started_at_;
+  return 1.0 + virial_ / (D * grains_ * temperature() * tau);
+}
+
+template <int D>
+double GasObserver<D>::cooling_per_collision() const {
+  const double n = static_cast<double>(samples_);
+  return (n * sum_xy_ - sum_x_ * sum_y_) / (n * sum_xx_ - sum_x_ * sum_x_);
+}
+
+template class GasObserver<2>;
+template class GasObserver<3>;
+
+}  // namespace granjet

@@ -1,0 +1,52 @@
+// The measured quantities of the periodic gas scenes, from what every backend hands the analysis
+// (momentum transfers, energies, collision counts), over the window from gas.equilibration to
+// the end of the run:
+// - gas: compressibility Z = P/(n T) from the collisional virial,
+//   P V = N T + (1/(D tau)) sum over collisions of r_ij . J_ij (r_ij = r_i - r_j, J_ij the
+//   impulse on i), so Z = 1 + sum r_ij . J_ij / (D N T tau) [spec §6, stress];
+// - hcs: cooling per collision, the least-squares slope of ln T against collisions per grain
+//   (2 collisions / N: each collision counts for both grains), T = sum m v^2 / (D N).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/simulator.hpp"
+
+namespace granjet {
+
+template <int D>
+class GasObserver {
+ public:
+  GasObserver(const Scene& scene, Simulator<D>& sim);
+
+  // The next time at which the observer wants to look at the run.
+  double next_time() const { return next_; }
+  // Looks at the run at sim.time() (call after every advance_to).
+  void observe(Simulator<D>& sim);
+
+  double temperature() const;  // mean over the window's samples
+  double compressibility() const;
+  double cooling_per_collision() const;
+  std::int64_t samples() const { return samples_; }
+
+ private:
+  double start_;
+  double interval_;
+  double next_;
+  bool started_ = false;
+  double started_at_ = 0.0;
+  double last_time_ = 0.0;
+  double grains_;
+  std::vector<PairImpulse<D>> transfers_;
+  double virial_ = 0.0;  // sum of r_ij . J_ij over the window
+  // Sums for the temperature mean and the fit of y = ln T against x = collisions per grain.
+  std::int64_t samples_ = 0;
+  double sum_t_ = 0.0, sum_x_ = 0.0, sum_y_ = 0.0, sum_xx_ = 0.0, sum_xy_ = 0.0;
+};
+
+extern template class GasObserver<2>;
+extern template class GasObserver<3>;
+
+}  // namespace granjet

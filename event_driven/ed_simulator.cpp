@@ -1,0 +1,464 @@
+#include "event_driven/ed_simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/collision_rules.hpp"
+#include "core/errors.hpp"
+#include "core/initial_state.hpp"
+#include "event_driven/scene_support.hpp"
+
+namespace granjet::ed {
+namespace {
+
+// Events per free grain between two moves of the time origin: rare enough to cost nothing,
+// often enough that event times stay within a few collision times of zero.
+constexpr std::int64_t kShiftEventsPerGrain = 32;
+// A pair that collided last with each other and still touches within this fraction of sigma^2
+// is separating: an approach seen there is round-off (an echo of the collision), not a new one.
+constexpr double kEchoTolerance = 1e-9;
+// Verification: collisions at contact and no overlaps, within this fraction of sigma.
+constexpr double kContactTolerance = 1e-9;
+// The time of a runner-up prediction that is not known.
+constexpr double kUnknown = -kNever;
+
+template <int D>
+double largest_diameter(const Particles<D>& p) {
+  double r = 0.0;
+  for (double x : p.radius()) r = std::max(r, x);
+  return 2.0 * r;
+}
+
+// Periodic scenes tile their box; open scenes cover the grains' bounding box, for the jets also
+// the removal region, with two cells to spare so that a grain leaving the region still crosses
+// a cell face (the moment it is removed).
+template <int D>
+CellList<D> make_cells(const Scene& scene, const Particles<D>& p) {
+  const double d = largest_diameter(p);
+  if (scene.periodic()) return CellList<D>::periodic(gas_lattice<D>(scene.gas).box, d, p.size());
+  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
+  if (!p.empty()) lo = hi = p.position()[0];
+  for (const Vec<D>& x : p.position()) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  if (scene.has_wall()) {
+    for (int a = 0; a < D; ++a) {
+      if (a == Dim<D>::kJetAxis) {
+        lo[a] = std::min(lo[a], -scene.region.below);
+      } else {
+        lo[a] = std::min(lo[a], -scene.region.radius);
+        hi[a] = std::max(hi[a], scene.region.radius);
+      }
+    }
+  }
+  const Vec<D> margin = Vec<D>::Constant(2.5 * d);
+  return CellList<D>::open(lo - margin, hi + margin, d, p.size());
+}
+
+}  // namespace
+
+template <int D>
+EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verification verify)
+    : scene_(scene),
+      grains_(std::move(grains)),
+      verify_(verify),
+      restitution_(scene),
+      cells_(make_cells<D>(scene, grains_)),
+      calendar_(grains_.size()),
+      collapse_(grains_.size()) {
+  const std::size_t n = grains_.size();
+  flight_.resize(n);
+  std::int64_t free_grains = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    Flight<D>& f = flight_[i];
+    f.x = grains_.position()[i];
+    f.v = fixed(i) ? Vec<D>::Zero() : grains_.velocity()[i];
+    f.radius = grains_.radius()[i];
+    cells_.insert(i, f.x);
+    free_grains += !fixed(i);
+  }
+  next_collision_.resize(n);
+  runner_up_.resize(n);
+  next_exit_.resize(n);
+  events_of_.assign(n, 0);
+  last_partner_.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) last_partner_[i] = i;
+  last_collision_.assign(n, -kNever);
+  alive_.assign(n, 1);
+  shift_every_ = kShiftEventsPerGrain * std::max<std::int64_t>(1, free_grains);
+  collapse_.set_flight_time(flight_time());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (fixed(i)) continue;
+    predict_all(i);
+    predict_exit(i);
+    schedule(i);
+  }
+  take_snapshot();
+  initial_energy_ = energy().total();
+  if (verify_ == Verification::kOn) check_no_overlaps();
+}
+
+template <int D>
+void EdSimulator<D>::advance_to(double t) {
+  while (!calendar_.empty()) {
+    const CalendarEntry next = calendar_.top();
+    if (next.time > t - origin_) break;
+    clock_ = next.time;
+    process(next.grain);
+    if (++events_since_shift_ >= shift_every_) shift_time_origin();
+  }
+  time_ = std::max(time_, t);
+  take_snapshot();
+  if (verify_ == Verification::kOn) check_no_overlaps();
+}
+
+template <int D>
+void EdSimulator<D>::process(std::uint32_t i) {
+  ++stats_.events;
+  if (next_exit_[i].time <= next_collision_[i].time) {
+    cross_cell(i);
+  } else if (still_valid(next_collision_[i])) {
+    collide(i, next_collision_[i].partner);
+  } else {
+    // Stale: the partner collided with someone else since the prediction. The runner-up, if
+    // still valid, is the earliest of the others (the stale partner has scanned i itself).
+    if (runner_up_[i].time != kUnknown && still_valid(runner_up_[i])) {
+      next_collision_[i] = runner_up_[i];
+      runner_up_[i].time = kUnknown;
+    } else {
+      predict_all(i);
+    }
+    schedule(i);
+  }
+}
+
+// Collision [2.1]-[2.2] through the core rule, at the restitution of the scene's law.
+template <int D>
+void EdSimulator<D>::collide(std::uint32_t i, std::uint32_t j) {
+  Flight<D>& fi = flight_[i];
+  Flight<D>& fj = flight_[j];
+  const bool j_moves = !fixed(j);
+  fi.stream_to(clock_);
+  if (j_moves) fj.stream_to(clock_);
+  const Vec<D> dr = cells_.minimum_image(fj.x - fi.x);
+  const double distance = dr.norm();
+  const Vec<D> n = dr / distance;
+  const double v_n = n.dot(fi.v - fj.v);
+  // Marked even when nothing happens below, so that the rescans see the pair as separating.
+  last_partner_[i] = j;
+  if (j_moves) last_partner_[j] = i;
+  // v_n <= 0: a grazing touch that round-off predicted as an approach; no impulse.
+  if (v_n > 0.0) {
+    if (verify_ == Verification::kOn) check_contact(i, j, distance);
+    const double e = restitution_(v_n, clock_ - last_collision_[i],
+                                  j_moves ? clock_ - last_collision_[j] : kNever);
+    const auto inv_m = grains_.inverse_mass();
+    const Vec<D> impulse = granjet::collide(n, fi.v, fj.v, inv_m[i], inv_m[j], e);
+    if (recording_)
+      transfers_.push_back({grains_.id()[i], grains_.id()[j], fi.x, fi.x + dr, impulse});
+    ++stats_.collisions;
+    ++events_of_[i];
+    last_collision_[i] = clock_;
+    bool collapsing = collapse_.collided(i, clock_);
+    if (j_moves) {
+      ++events_of_[j];
+      last_collision_[j] = clock_;
+      collapsing = collapse_.collided(j, clock_) || collapsing;
+    }
+    if (collapsing) report_collapse(i, j);
+  }
+  predict_all(i);
+  predict_exit(i);
+  schedule(i);
+  if (j_moves) {
+    predict_all(j);
+    predict_exit(j);
+    schedule(j);
+  }
+}
+
+template <int D>
+void EdSimulator<D>::cross_cell(std::uint32_t i) {
+  ++stats_.cell_crossings;
+  Flight<D>& f = flight_[i];
+  f.stream_to(clock_);
+  const Crossing moved = next_exit_[i];
+  f.x += cells_.move(i, moved.axis, moved.direction);
+  if (scene_.has_wall() && grains_.kind()[i] == GrainKind::kFree && outside_region(f.x)) {
+    remove(i);
+    return;
+  }
+  // The kept prediction is the earliest over the cells scanned before; only the new layer
+  // can add an earlier one, unless the kept one went stale.
+  if (still_valid(next_collision_[i]))
+    predict_new_layer(i, moved);
+  else
+    predict_all(i);
+  predict_exit(i);
+  schedule(i);
+}
+
+// The same region as the soft backend: farther than region.radius from the jet axis or
+// region.below behind the target plane.
+template <int D>
+bool EdSimulator<D>::outside_region(const Vec<D>& x) const {
+  constexpr int kAxis = Dim<D>::kJetAxis;
+  const double lateral2 = x.squaredNorm() - x[kAxis] * x[kAxis];
+  return lateral2 > scene_.region.radius * scene_.region.radius || x[kAxis] < -scene_.region.below;
+}
+
+template <int D>
+void EdSimulator<D>::remove(std::uint32_t i) {
+  const Flight<D>& f = flight_[i];
+  removed_energy_ += 0.5 * grains_.mass()[i] * f.v.squaredNorm();
+  const double r = grains_.radius()[i];
+  removed_energy_ += 0.5 * Dim<D>::kInertiaFactor * grains_.mass()[i] * r * r *
+                     Dim<D>::spin_dot(grains_.spin()[i], grains_.spin()[i]);
+  cells_.remove(i);
+  calendar_.cancel(i);
+  alive_[i] = 0;
+  ++events_of_[i];  // predictions with i as partner go stale
+  ++stats_.removed;
+}
+
+template <int D>
+void EdSimulator<D>::predict_all(std::uint32_t i) {
+  cells_.gather(i, hood_);
+  next_collision_[i] = runner_up_[i] = Prediction{};
+  merge_hood(i);
+}
+
+template <int D>
+void EdSimulator<D>::predict_new_layer(std::uint32_t i, const Crossing& moved) {
+  cells_.gather_new_layer(i, moved.axis, moved.direction, hood_);
+  merge_hood(i);
+}
+
+// Three passes over the gathered grains: b = dr.dv, c = dr^2 - sigma^2, a = dv^2 of each pair;
+// the contact delays, branch-free, as vector code (four roots and quotients at a time); then
+// the earliest two, whose branch is rarely taken. (Members are copied to locals: the compiler
+// must see that the arrays written cannot change them.)
+template <int D>
+void EdSimulator<D>::merge_hood(std::uint32_t i) {
+  const std::size_t n = hood_.size;
+  if (pair_b_.size() < n) {
+    pair_b_.resize(hood_.grain.size());
+    pair_c_.resize(hood_.grain.size());
+    pair_a_.resize(hood_.grain.size());
+  }
+  const double now = clock_;
+  const Vec<D> x_i = flight_[i].position_at(now), v_i = flight_[i].v;
+  const double r_i = flight_[i].radius;
+  const Flight<D>* const flight = flight_.data();
+  const std::uint32_t* const grain = hood_.grain.data();
+  const std::uint8_t* const image = hood_.image.data();
+  const auto& shift = hood_.shift;
+  double* __restrict const pb = pair_b_.data();
+  double* __restrict const pc = pair_c_.data();
+  double* __restrict const pa = pair_a_.data();
+  for (std::size_t m = 0; m < n; ++m) {
+    const Flight<D>& fk = flight[grain[m]];
+    const Vec<D> dr = fk.position_at(now) + shift[image[m]] - x_i;
+    const Vec<D> dv = fk.v - v_i;
+    const double sigma = r_i + fk.radius;
+    pb[m] = dr.dot(dv);
+    pc[m] = dr.squaredNorm() - sigma * sigma;
+    pa[m] = dv.squaredNorm();
+  }
+  for (std::size_t m = 0; m < n; ++m) pb[m] = contact_delay(pb[m], pc[m], pa[m]);
+  Prediction best = next_collision_[i], second = runner_up_[i];
+  for (std::size_t m = 0; m < n; ++m) {
+    const double when = now + pb[m];
+    // An unknown runner-up (kUnknown) stays unknown unless a new earliest displaces the old.
+    if (when >= best.time && when >= second.time) [[likely]]
+      continue;
+    const std::uint32_t k = grain[m];
+    if (k == last_partner_[i] && echo(i, k, flight[k].position_at(now) + shift[image[m]] - x_i))
+      continue;
+    const Prediction found{when, k, events_of_[k]};
+    if (when < best.time) {
+      second = best;
+      best = found;
+    } else {
+      second = found;
+    }
+  }
+  next_collision_[i] = best;
+  runner_up_[i] = second;
+}
+
+// The pair collided last with each other (neither has changed velocity since) and still
+// touches: it is separating, whatever the rounded dr.dv says.
+template <int D>
+bool EdSimulator<D>::echo(std::uint32_t i, std::uint32_t k, const Vec<D>& dr) const {
+  const double sigma = flight_[i].radius + flight_[k].radius;
+  return (fixed(k) || last_partner_[k] == i) &&
+         dr.squaredNorm() - sigma * sigma < kEchoTolerance * sigma * sigma;
+}
+
+template <int D>
+void EdSimulator<D>::predict_exit(std::uint32_t i) {
+  const Flight<D>& f = flight_[i];
+  const typename CellList<D>::Exit exit = cells_.next_exit(i, f.x, f.v);
+  next_exit_[i] = {std::max(clock_, f.t + exit.delay), exit.axis, exit.direction};
+}
+
+template <int D>
+void EdSimulator<D>::schedule(std::uint32_t i) {
+  const double when = std::min(next_collision_[i].time, next_exit_[i].time);
+  if (when == kNever)
+    calendar_.cancel(i);
+  else
+    calendar_.schedule(i, when);
+}
+
+// Streams every grain to the clock and makes the clock zero; the event order is unchanged.
+template <int D>
+void EdSimulator<D>::shift_time_origin() {
+  const double dt = clock_;
+  for (std::uint32_t i = 0; i < flight_.size(); ++i) {
+    if (alive_[i] && !fixed(i)) {
+      flight_[i].stream_to(clock_);
+      flight_[i].t = 0.0;
+    }
+    next_collision_[i].time -= dt;
+    runner_up_[i].time -= dt;
+    next_exit_[i].time -= dt;
+    last_collision_[i] -= dt;
+  }
+  calendar_.shift(dt);
+  collapse_.shift(dt);
+  collapse_.set_flight_time(flight_time());
+  origin_ += dt;
+  clock_ = 0.0;
+  events_since_shift_ = 0;
+}
+
+// Smallest diameter over the rms speed of the moving grains (kNever when nothing moves).
+template <int D>
+double EdSimulator<D>::flight_time() const {
+  double sum_v2 = 0.0, d_min = kNever;
+  std::int64_t moving = 0;
+  for (std::uint32_t i = 0; i < flight_.size(); ++i) {
+    if (!alive_[i] || fixed(i)) continue;
+    sum_v2 += flight_[i].v.squaredNorm();
+    d_min = std::min(d_min, 2.0 * flight_[i].radius);
+    ++moving;
+  }
+  return sum_v2 > 0.0 ? d_min / std::sqrt(sum_v2 / moving) : kNever;
+}
+
+template <int D>
+void EdSimulator<D>::report_collapse(std::uint32_t i, std::uint32_t j) const {
+  std::vector<GrainId> ids{grains_.id()[i], grains_.id()[j]};
+  for (std::uint32_t g : collapse_.streaking(clock_)) {
+    if (ids.size() >= 12) break;
+    if (std::find(ids.begin(), ids.end(), grains_.id()[g]) == ids.end())
+      ids.push_back(grains_.id()[g]);
+  }
+  std::ostringstream what;
+  what << "inelastic collapse: grain " << grains_.id()[i] << " collided "
+       << CollapseDetector::kCollisions << " times while the clock advanced less than "
+       << CollapseDetector::kSpan << " free-flight times; ";
+  switch (scene_.ed.restitution_law) {
+    case RestitutionLaw::kConstant:
+      what << "a constant restitution cannot resolve it: use ed.restitution_law = "
+              "velocity_dependent or tc_model";
+      break;
+    case RestitutionLaw::kVelocityDependent:
+      what << "raise ed.v0 (slow collisions more elastic) or use ed.restitution_law = tc_model";
+      break;
+    case RestitutionLaw::kTcModel:
+      what << "raise ed.tc or use ed.restitution_law = velocity_dependent";
+      break;
+  }
+  throw BlowUpError(what.str(), stats_.events, origin_ + clock_, ids);
+}
+
+template <int D>
+void EdSimulator<D>::take_snapshot() {
+  const double now = time_ - origin_;
+  Particles<D> s;
+  for (std::uint32_t i = 0; i < flight_.size(); ++i) {
+    if (!alive_[i]) continue;
+    const Flight<D>& f = flight_[i];
+    s.add(grains_.id()[i], grains_.kind()[i], cells_.wrap(f.position_at(now)), f.v, f.radius,
+          grains_.mass()[i]);
+    s.spin()[s.size() - 1] = grains_.spin()[i];
+  }
+  snapshot_ = std::move(s);
+}
+
+template <int D>
+void EdSimulator<D>::collect_transfers(std::vector<PairImpulse<D>>& out) {
+  out.insert(out.end(), transfers_.begin(), transfers_.end());
+  transfers_.clear();
+}
+
+template <int D>
+void EdSimulator<D>::record_transfers(bool on) {
+  recording_ = on;
+  if (!on) transfers_.clear();
+}
+
+template <int D>
+EnergyBalance EdSimulator<D>::energy() const {
+  EnergyBalance e;
+  for (std::uint32_t i = 0; i < flight_.size(); ++i) {
+    if (!alive_[i] || fixed(i)) continue;  // immovable wall grains carry no energy
+    const double m = grains_.mass()[i], r = grains_.radius()[i];
+    e.kinetic += 0.5 * m * flight_[i].v.squaredNorm();
+    // Frictionless hard grains never change their spins.
+    e.rotational += 0.5 * Dim<D>::kInertiaFactor * m * r * r *
+                    Dim<D>::spin_dot(grains_.spin()[i], grains_.spin()[i]);
+  }
+  e.removed = removed_energy_;
+  e.dissipated = initial_energy_ - e.total() - e.removed;
+  return e;
+}
+
+template <int D>
+void EdSimulator<D>::check_contact(std::uint32_t i, std::uint32_t j, double distance) const {
+  const double sigma = flight_[i].radius + flight_[j].radius;
+  if (std::abs(distance - sigma) > kContactTolerance * sigma)
+    throw BlowUpError("collision at distance " + std::to_string(distance) + " instead of " +
+                          std::to_string(sigma),
+                      stats_.events, origin_ + clock_, {grains_.id()[i], grains_.id()[j]});
+}
+
+template <int D>
+void EdSimulator<D>::check_no_overlaps() const {
+  const double now = time_ - origin_;
+  typename CellList<D>::Neighbourhood hood;
+  for (std::uint32_t i = 0; i < flight_.size(); ++i) {
+    if (!alive_[i] || fixed(i)) continue;
+    const Vec<D> x_i = flight_[i].position_at(now);
+    cells_.gather(i, hood);
+    for (std::size_t m = 0; m < hood.size; ++m) {
+      const std::uint32_t k = hood.grain[m];
+      if (k == i) continue;
+      const double sigma = flight_[i].radius + flight_[k].radius;
+      const double distance = (flight_[k].position_at(now) + hood.shift[hood.image[m]] - x_i).norm();
+      if (distance < (1.0 - kContactTolerance) * sigma)
+        throw BlowUpError("overlap: distance " + std::to_string(distance) + " < " +
+                              std::to_string(sigma),
+                          stats_.events, time_, {grains_.id()[i], grains_.id()[k]});
+    }
+  }
+}
+
+template <int D>
+std::unique_ptr<Simulator<D>> make_ed_simulator(const Scene& scene) {
+  const Scene hard = hard_scene(scene);
+  Particles<D> grains = build_initial_state<D>(hard);
+  return std::make_unique<EdSimulator<D>>(hard, std::move(grains));
+}
+
+template class EdSimulator<2>;
+template class EdSimulator<3>;
+template std::unique_ptr<Simulator<2>> make_ed_simulator<2>(const Scene&);
+template std::unique_ptr<Simulator<3>> make_ed_simulator<3>(const Scene&);
+
+}  // namespace granjet::ed
