@@ -24,8 +24,11 @@ std::string path_of(std::string name) {
 class GroupWriter {
  public:
   explicit GroupWriter(const std::filesystem::path& file) : ctx_(file) {
-    file_ = ctx_.own(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
-                     "the HDF5 file");
+    file_ = std::filesystem::exists(file)
+                ? ctx_.own(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
+                           "the HDF5 file")
+                : ctx_.own(H5Fcreate(file.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT),
+                           H5Fclose, "create", "the HDF5 file");
     links_ = ctx_.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
     ctx_.check(H5Pset_create_intermediate_group(links_.get(), 1), "set", "link properties");
   }

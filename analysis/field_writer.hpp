@@ -1,5 +1,5 @@
-// Stores an analysed ensemble in an existing HDF5 file (a granjet run file or any other), in two
-// groups that replace earlier ones of the same name:
+// Stores an analysed ensemble in an HDF5 file (a granjet run file or any other; created when it
+// does not exist), in two groups that replace earlier ones of the same name:
 //
 //   /fields   attributes dimension, seeds, coordinates ("cylindrical" | "cartesian")
 //     mesh/lateral, mesh/height          bin borders (r or y; height above the wall)

@@ -1,6 +1,7 @@
 // The granjet command: run | compare | info | --help | --version. Exit codes: 0 done, 1 failure
 // (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as .partial).
 #include <boost/program_options.hpp>
+#include <charconv>
 #include <iostream>
 
 #include "analysis/h5md_reader.hpp"
@@ -18,7 +19,7 @@ namespace {
 
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
-              [--summary run.json] [--quiet]
+              [--summary run.json] [--seeds 1..10 | 1,4,7] [--quiet]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet info run.h5 [--scene]
   granjet analyze run.h5 [--window t0:t1] [--summary fields.json]
@@ -36,6 +37,8 @@ run options:
   --out FILE        HDF5/H5MD output (default: SCENE's stem + .h5); an .xmf sidecar
                     beside it opens in ParaView (XDMF Reader)
   --summary FILE    JSON summary of the run
+  --seeds LIST      an ensemble: one run per seed (A..B or a,b,c) to OUT.seedN.h5; the
+                    analysis' mean and spread over the seeds go to OUT and SUMMARY
   --quiet           no progress rows
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
@@ -61,15 +64,42 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   return vm;
 }
 
+// "1..10" (inclusive) or "3,7,9".
+std::vector<std::uint64_t> parse_seeds(const std::string& text) {
+  const auto bad = [&] {
+    return granjet::InputError("--seeds", "'" + text +
+                                              "' is not a range A..B (A <= B) or a list a,b,c");
+  };
+  const auto number = [&](const std::string& s) {
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || end != s.data() + s.size() || s.empty()) throw bad();
+    return v;
+  };
+  std::vector<std::uint64_t> seeds;
+  if (const auto dots = text.find(".."); dots != std::string::npos) {
+    const std::uint64_t first = number(text.substr(0, dots)), last = number(text.substr(dots + 2));
+    if (last < first || last - first > 10000) throw bad();
+    for (std::uint64_t s = first; s <= last; ++s) seeds.push_back(s);
+    return seeds;
+  }
+  std::size_t start = 0;
+  for (std::size_t comma; (comma = text.find(',', start)) != std::string::npos; start = comma + 1)
+    seeds.push_back(number(text.substr(start, comma - start)));
+  seeds.push_back(number(text.substr(start)));
+  return seeds;
+}
+
 int run(const std::vector<std::string>& args) {
   granjet::RunOptions o;
   po::options_description desc;
   desc.add_options()("scene", po::value<std::string>()->required())(
       "backend", po::value(&o.backend))("set", po::value(&o.overrides)->composing())(
-      "out", po::value<std::string>())("summary", po::value<std::string>())("quiet",
-                                                                            po::bool_switch(&o.quiet));
+      "out", po::value<std::string>())("summary", po::value<std::string>())(
+      "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet));
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
+  if (vm.count("seeds")) o.seeds = parse_seeds(vm["seeds"].as<std::string>());
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   return granjet::run_command(o, std::cout);

@@ -1,6 +1,7 @@
 // `granjet run`: one scene on one backend, with progress rows, H5MD output and a JSON summary.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -15,6 +16,10 @@ struct RunOptions {
   std::filesystem::path out;           // empty: <scene file stem>.h5 in the working directory
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
+  // An ensemble: one run per seed (run.seed), each to <out stem>.seed<N>.h5 (and
+  // <summary stem>.seed<N>.json); the mean and spread over seeds of the analysis go to `out`
+  // and `summary`. Empty: one run with the scene's seed.
+  std::vector<std::uint64_t> seeds;
 };
 
 // Returns the process exit code: 0 done, 3 blow-up (the output kept as .partial). Throws

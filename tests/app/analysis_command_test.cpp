@@ -58,5 +58,32 @@ TEST(AnalysisCommand, InlineFieldsAndStoredFrameAnalysisAgreeOnKineticFields) {
   fs::remove_all(dir);
 }
 
+TEST(AnalysisCommand, SeedsMakeAnEnsembleWithItsSpread) {
+  const fs::path dir = fs::temp_directory_path() / "granjet_analysis_seeds";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string base = "run " + std::string(GRANJET_SCENES_DIR) + "/jet3d.ini --quiet" +
+                           " --set jet.grains=1500 --set run.t_end=5 --set output.interval=0" +
+                           " --set analysis.window_start=3 --set analysis.window_end=5";
+  ASSERT_EQ(run(base + " --seeds 1,2 --out " + (dir / "e.h5").string() + " --summary " +
+                (dir / "e.json").string()),
+            0);
+  EXPECT_TRUE(fs::exists(dir / "e.seed1.h5"));
+  EXPECT_TRUE(fs::exists(dir / "e.seed2.json"));
+  const nlohmann::json e = read_json(dir / "e.json");
+  EXPECT_EQ(e["analysis"]["seeds"], 2);
+  const nlohmann::json t_g = e["analysis"]["bins"][0]["T_g"];
+  EXPECT_EQ(t_g["count"], 2);
+  EXPECT_GT(t_g["std"].get<double>(), 0.0);  // two random site removals differ
+  // The ensemble mean is the mean of the two runs.
+  const double one = read_json(dir / "e.seed1.json")["analysis"]["bins"][0]["T_g"]["mean"];
+  const double two = read_json(dir / "e.seed2.json")["analysis"]["bins"][0]["T_g"]["mean"];
+  EXPECT_NEAR(t_g["mean"].get<double>(), 0.5 * (one + two), 1e-12 * std::abs(one));
+  EXPECT_EQ(analysis::read_analysis_values(dir / "e.h5", "/fields/T_g/mean").size(), 5u);
+  EXPECT_EQ(run(base + " --seeds 3..1"), 2);
+  EXPECT_EQ(run(base + " --seeds x"), 2);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace granjet
