@@ -170,8 +170,6 @@ class CellList {
     gather_stencil<0>(s, out);
   }
 
-  std::size_t cells() const { return outside_cell_; }
-
  private:
   static constexpr double kOpenHysteresis = 0.05;  // in diameters
   static constexpr double kMaxCellsPerGrain = 128.0;

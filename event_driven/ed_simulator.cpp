@@ -260,12 +260,11 @@ void EdSimulator<D>::merge_hood(std::uint32_t i) {
   double* __restrict const pa = pair_a_.data();
   for (std::size_t m = 0; m < n; ++m) {
     const Flight<D>& fk = flight[grain[m]];
-    const Vec<D> dr = fk.position_at(now) + shift[image[m]] - x_i;
-    const Vec<D> dv = fk.v - v_i;
-    const double sigma = r_i + fk.radius;
-    pb[m] = dr.dot(dv);
-    pc[m] = dr.squaredNorm() - sigma * sigma;
-    pa[m] = dv.squaredNorm();
+    const PairQuadratic q = pair_quadratic(Vec<D>(fk.position_at(now) + shift[image[m]] - x_i),
+                                           Vec<D>(fk.v - v_i), r_i + fk.radius);
+    pb[m] = q.b;
+    pc[m] = q.c;
+    pa[m] = q.a;
   }
   for (std::size_t m = 0; m < n; ++m) pb[m] = contact_delay(pb[m], pc[m], pa[m]);
   Prediction best = next_collision_[i], second = runner_up_[i];

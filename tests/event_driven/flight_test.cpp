@@ -11,6 +11,11 @@ namespace {
 
 using V = Vec<3>;
 
+double contact_delay(const V& dr, const V& dv, double sigma) {
+  const PairQuadratic q = pair_quadratic(dr, dv, sigma);
+  return ed::contact_delay(q.b, q.c, q.a);
+}
+
 TEST(ContactDelay, HeadOnApproachTouchesAfterTheGapOverTheSpeed) {
   // 0.5 apart at the surfaces, closing at 2: contact after 0.25.
   EXPECT_DOUBLE_EQ(contact_delay(V(1.5, 0, 0), V(-2, 0, 0), 1.0), 0.25);
