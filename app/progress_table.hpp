@@ -1,4 +1,5 @@
-// The progress rows of `granjet run`: sim time, % done, grains, contacts, rate, ETA.
+// The progress rows of `granjet run`: sim time, % done, grains, contacts and particle-steps/s
+// (soft DEM) or collisions and collisions/s (event-driven), ETA.
 #pragma once
 
 #include <chrono>
@@ -11,7 +12,7 @@ namespace granjet {
 
 class ProgressTable {
  public:
-  ProgressTable(std::ostream& out, double t_end, bool quiet);
+  ProgressTable(std::ostream& out, double t_end, bool quiet, bool event_driven);
   void row(double time, std::int64_t grains, const SimStats& stats);
   double elapsed_seconds() const;
 
@@ -20,9 +21,10 @@ class ProgressTable {
   std::ostream& out_;
   double t_end_;
   bool quiet_;
+  bool event_driven_;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_ = start_;
-  std::int64_t last_particle_steps_ = 0;
+  std::int64_t last_work_ = 0;
 };
 
 }  // namespace granjet

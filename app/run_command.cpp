@@ -143,7 +143,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   double next_output = scene.output.interval > 0.0 ? scene.output.interval : kInf;
   double next_progress = scene.run.progress_interval;
   double last_output = 0.0;
-  ProgressTable progress(out, t_end, options.quiet);
+  ProgressTable progress(out, t_end, options.quiet, event_driven(options.backend));
   std::string status = "complete";
   try {
     while (sim->time() < t_end - 0.5 * dt) {

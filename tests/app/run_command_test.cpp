@@ -2,48 +2,19 @@
 // the binary scene's measured restitution, and bit-identical reruns.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "analysis/h5md_reader.hpp"
+#include "command_fixture.hpp"
 
 namespace granjet {
 namespace {
 
 namespace fs = std::filesystem;
 
-class GranjetCommand : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("granjet_cmd_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  // Runs granjet with `args`; returns the exit code, stderr into err_.
-  int granjet(const std::string& args) {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > " +
-                            (dir_ / "stdout.txt").string() + " 2> " + err.string();
-    const int status = std::system(cmd.c_str());
-    std::ifstream in(err);
-    std::stringstream s;
-    s << in.rdbuf();
-    err_ = s.str();
-    return WEXITSTATUS(status);
-  }
-  std::string scene(const std::string& name) const {
-    return std::string(GRANJET_SCENES_DIR) + "/" + name;
-  }
-
-  fs::path dir_;
-  std::string err_;
-};
+using GranjetCommand = testing::CommandTest;
 
 TEST_F(GranjetCommand, BinarySceneReportsMeasuredRestitutionAndContactTime) {
   const fs::path out = dir_ / "b.h5", summary = dir_ / "b.json";

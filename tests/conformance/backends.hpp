@@ -3,6 +3,8 @@
 // contact reproduces e within 0.5% at dt = 0.02 t_c [3.4]-[3.5].
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <memory>
 #include <string>
 
@@ -36,5 +38,9 @@ struct On {
   using Backend = B;
   static constexpr int D = kD;
 };
+
+// Every conformance test runs on all of these.
+using AllBackends = ::testing::Types<On<SoftDemBackend, 2>, On<SoftDemBackend, 3>,
+                                     On<EventDrivenBackend, 2>, On<EventDrivenBackend, 3>>;
 
 }  // namespace granjet::testing

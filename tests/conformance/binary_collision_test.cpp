@@ -10,15 +10,9 @@
 namespace granjet {
 namespace {
 
-using testing::EventDrivenBackend;
-using testing::On;
-using testing::SoftDemBackend;
-
 template <class T>
 class BinaryConformance : public ::testing::Test {};
-using Cases = ::testing::Types<On<SoftDemBackend, 2>, On<SoftDemBackend, 3>,
-                               On<EventDrivenBackend, 2>, On<EventDrivenBackend, 3>>;
-TYPED_TEST_SUITE(BinaryConformance, Cases);
+TYPED_TEST_SUITE(BinaryConformance, testing::AllBackends);
 
 TYPED_TEST(BinaryConformance, Eq2_1_HeadOnGivesTheRestitutionAndItsEnergyLoss) {
   using Backend = typename TypeParam::Backend;

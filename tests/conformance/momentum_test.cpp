@@ -10,15 +10,9 @@
 namespace granjet {
 namespace {
 
-using testing::EventDrivenBackend;
-using testing::On;
-using testing::SoftDemBackend;
-
 template <class T>
 class MomentumConformance : public ::testing::Test {};
-using Cases = ::testing::Types<On<SoftDemBackend, 2>, On<SoftDemBackend, 3>,
-                               On<EventDrivenBackend, 2>, On<EventDrivenBackend, 3>>;
-TYPED_TEST_SUITE(MomentumConformance, Cases);
+TYPED_TEST_SUITE(MomentumConformance, testing::AllBackends);
 
 template <int D>
 Vec<D> momentum(const Particles<D>& p) {

@@ -2,56 +2,20 @@
 // same scene files, the periodic gas scenes and their measured quantities, bit-identical reruns,
 // inelastic collapse as exit code 3, bad keys as exit code 2, and `granjet compare`.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "analysis/h5md_reader.hpp"
 #include "analysis/kinetic_theory.hpp"
+#include "../app/command_fixture.hpp"
 
 namespace granjet {
 namespace {
 
 namespace fs = std::filesystem;
 
-class EventDrivenCommand : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("granjet_ed_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  // Runs granjet with `args`; returns the exit code, stderr into err_.
-  int granjet(const std::string& args) {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > " +
-                            (dir_ / "stdout.txt").string() + " 2> " + err.string();
-    const int status = std::system(cmd.c_str());
-    std::ifstream in(err);
-    std::stringstream s;
-    s << in.rdbuf();
-    err_ = s.str();
-    return WEXITSTATUS(status);
-  }
-  static std::string scene(const std::string& name) {
-    return std::string(GRANJET_SCENES_DIR) + "/" + name;
-  }
-  nlohmann::json summary(const std::string& name) const {
-    std::ifstream in(dir_ / name);
-    return nlohmann::json::parse(in);
-  }
-
-  fs::path dir_;
-  std::string err_;
-};
+using EventDrivenCommand = testing::CommandTest;
 
 TEST_F(EventDrivenCommand, JetsRunOnTheSameSceneFilesAndReportEventCounts) {
   for (const std::string jet : {"jet2d.ini", "jet3d.ini"}) {

@@ -1,0 +1,52 @@
+// Runs the granjet command in a fresh temporary directory per test and keeps its stderr.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace granjet::testing {
+
+class CommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("granjet_cmd_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_suite()->name()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // Runs granjet with `args`; returns the exit code, stderr into err_.
+  int granjet(const std::string& args) {
+    const std::filesystem::path err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > " +
+                            (dir_ / "stdout.txt").string() + " 2> " + err.string();
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(err);
+    std::stringstream s;
+    s << in.rdbuf();
+    err_ = s.str();
+    return WEXITSTATUS(status);
+  }
+  static std::string scene(const std::string& name) {
+    return std::string(GRANJET_SCENES_DIR) + "/" + name;
+  }
+  nlohmann::json summary(const std::string& name) const {
+    std::ifstream in(dir_ / name);
+    return nlohmann::json::parse(in);
+  }
+
+  std::filesystem::path dir_;
+  std::string err_;
+};
+
+}  // namespace granjet::testing
