@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/errors.hpp"
@@ -17,8 +18,8 @@ double sticky_max(double largest, double value) {
 
 }  // namespace
 
-template <int D, bool kFriction>
-DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initial)
+template <int D, bool kFriction, bool kMono>
+DemSimulator<D, kFriction, kMono>::DemSimulator(const Scene& scene, Particles<D> initial)
     : scene_(scene),
       p_(std::move(initial)),
       law_{contact_coefficients(scene.contact), scene.dt()},
@@ -48,8 +49,8 @@ DemSimulator<D, kFriction>::DemSimulator(const Scene& scene, Particles<D> initia
   initial_energy_ = energy().total();
 }
 
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::advance_to(double t) {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::advance_to(double t) {
   // The first step at or after t (a relative 1e-9 absorbs round-off in t / dt).
   const auto target = static_cast<std::int64_t>(std::ceil(t / dt_ - 1e-9));
   while (step_ < target) step();
@@ -61,8 +62,8 @@ void DemSimulator<D, kFriction>::advance_to(double t) {
 // The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
 // dt times the largest speed of each step, a bound on every displacement that costs no extra
 // pass over stored positions.
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::step() {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
     add_travel(force_pass([&](std::size_t i) { return advance_ab2(i); }));
@@ -86,15 +87,15 @@ void DemSimulator<D, kFriction>::step() {
 // Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
 // x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
 // F(t-dt) = F(t) [spec §3].
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::add_travel(double largest_speed2) {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::add_travel(double largest_speed2) {
   travel_ += dt_ * std::sqrt(largest_speed2);
   // Written so that a NaN speed also triggers the rebuild, which reports it.
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
-template <int D, bool kFriction>
-double DemSimulator<D, kFriction>::advance_ab2(std::size_t i) {
+template <int D, bool kFriction, bool kMono>
+double DemSimulator<D, kFriction, kMono>::advance_ab2(std::size_t i) {
   auto x = p_.position();
   auto v = p_.velocity();
   const double inv_m = p_.inverse_mass()[i];
@@ -118,8 +119,8 @@ double DemSimulator<D, kFriction>::advance_ab2(std::size_t i) {
 // Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
 // this predicted v(t+dt) rather than the half-step velocity, which would lag by dt/2 and bias
 // the restitution by O(dt) (LAMMPS's nve/sphere gives e = 0.7567 for 0.75 at dt = t_c/50).
-template <int D, bool kFriction>
-double DemSimulator<D, kFriction>::predict_verlet(std::size_t i) {
+template <int D, bool kFriction, bool kMono>
+double DemSimulator<D, kFriction, kMono>::predict_verlet(std::size_t i) {
   Vec<D>& v = p_.velocity()[i];
   const Vec<D> dv = (dt_ * p_.inverse_mass()[i]) * force_prev_[i];
   p_.position()[i] += dt_ * (v + 0.5 * dv);
@@ -130,8 +131,8 @@ double DemSimulator<D, kFriction>::predict_verlet(std::size_t i) {
 }
 
 // Velocity Verlet, corrector: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::correct_verlet(std::size_t i) {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::correct_verlet(std::size_t i) {
   p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
   force_prev_[i] = force_[i];
   force_[i].setZero();
@@ -142,26 +143,27 @@ void DemSimulator<D, kFriction>::correct_verlet(std::size_t i) {
   }
 }
 
-template <int D, bool kFriction>
+template <int D, bool kFriction, bool kMono>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
+void DemSimulator<D, kFriction, kMono>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
                                                      OnApart&& on_apart) const {
   const auto x = p_.position();
   const auto v = p_.velocity();
   const auto w = p_.spin();
   const auto radius = p_.radius();
   const Vec<D> x_i = x[i];
-  const double radius_i = radius[i];
+  const double radius_i = radius_of(radius, i);
   for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k) {
     const std::uint32_t j = pairs_.partner[k];
     const Vec<D> r_ij = x_i - x[j];
-    const double reach = radius_i + radius[j];
+    const double radius_j = kMono ? radius_i : radius[j];
+    const double reach = radius_i + radius_j;
     const double d2 = r_ij.squaredNorm();
     if (d2 >= reach * reach) {
       on_apart(k);
       continue;
     }
-    const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius_i, radius[j]);
+    const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius_i, radius_j);
     Vec<D> v_rel = v[i] - v[j];
     if constexpr (kFriction)
       v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
@@ -169,9 +171,9 @@ void DemSimulator<D, kFriction>::for_each_contact_of(std::size_t i, OnContact&& 
   }
 }
 
-template <int D, bool kFriction>
+template <int D, bool kFriction, bool kMono>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction>::for_each_contact(OnContact&& on_contact,
+void DemSimulator<D, kFriction, kMono>::for_each_contact(OnContact&& on_contact,
                                                   OnApart&& on_apart) const {
   for (std::size_t i = 0; i < p_.size(); ++i)
     for_each_contact_of(
@@ -183,10 +185,10 @@ void DemSimulator<D, kFriction>::for_each_contact(OnContact&& on_contact,
 // Accumulates all forces at the current state and calls after_row(i) as soon as grain i's
 // force is complete. That is right after row i of the half list: rows k < i have added their
 // share already, and later rows never touch i. force_ and torque_ must be zero on entry.
-template <int D, bool kFriction>
+template <int D, bool kFriction, bool kMono>
 template <class AfterRow>
 [[gnu::flatten]]  // the hot loop: inline the contact law and the row visitor into it
-double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
+double DemSimulator<D, kFriction, kMono>::force_pass(AfterRow&& after_row) {
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   const auto radius = p_.radius();
@@ -203,7 +205,8 @@ double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
         i,
         [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
           ++contacts;
-          if (g.overlap > overlap_limit_ * std::min(radius[i], radius[j]) && !blown) {
+          if (g.overlap > overlap_limit_ * std::min(radius_of(radius, i), radius_of(radius, j)) &&
+              !blown) {
             blown = true;
             blown_i = i;
             blown_j = j;
@@ -241,8 +244,8 @@ double DemSimulator<D, kFriction>::force_pass(AfterRow&& after_row) {
   return largest;
 }
 
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::check_finite() const {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::check_finite() const {
   std::vector<GrainId> bad;
   for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
     if (!p_.position()[i].allFinite() || !p_.velocity()[i].allFinite()) bad.push_back(p_.id()[i]);
@@ -251,8 +254,8 @@ void DemSimulator<D, kFriction>::check_finite() const {
 
 // Jet grains farther than region.radius from the axis or region.below behind the target plane
 // are removed; their energy is booked so the balance still closes.
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::remove_escaped() {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::remove_escaped() {
   if (!scene_.has_wall()) return;
   constexpr int kAxis = Dim<D>::kJetAxis;
   const double r2_max = scene_.region.radius * scene_.region.radius;
@@ -282,8 +285,8 @@ void DemSimulator<D, kFriction>::remove_escaped() {
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::rebuild() {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::rebuild() {
   check_finite();
   // The tangential history of touching pairs, by grain ids (indices change below).
   struct History {
@@ -338,8 +341,8 @@ void DemSimulator<D, kFriction>::rebuild() {
   ++stats_.neighbour_rebuilds;
 }
 
-template <int D, bool kFriction>
-void DemSimulator<D, kFriction>::collect_transfers(std::vector<PairImpulse<D>>& out) {
+template <int D, bool kFriction, bool kMono>
+void DemSimulator<D, kFriction, kMono>::collect_transfers(std::vector<PairImpulse<D>>& out) {
   const double elapsed = time() - last_collect_time_;
   last_collect_time_ = time();
   const auto x = p_.position();
@@ -352,8 +355,8 @@ void DemSimulator<D, kFriction>::collect_transfers(std::vector<PairImpulse<D>>& 
   }, [](std::uint32_t) {});
 }
 
-template <int D, bool kFriction>
-EnergyBalance DemSimulator<D, kFriction>::energy() const {
+template <int D, bool kFriction, bool kMono>
+EnergyBalance DemSimulator<D, kFriction, kMono>::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;  // immovable wall grains carry no energy
@@ -374,15 +377,25 @@ EnergyBalance DemSimulator<D, kFriction>::energy() const {
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
   Particles<D> initial = build_initial_state<D>(scene);
-  if (scene.frictional())
-    return std::make_unique<DemSimulator<D, true>>(scene, std::move(initial));
-  return std::make_unique<DemSimulator<D, false>>(scene, std::move(initial));
+  const auto radii = initial.radius();
+  const bool mono = std::adjacent_find(radii.begin(), radii.end(), std::not_equal_to<>()) ==
+                    radii.end();
+  if (scene.frictional()) {
+    if (mono) return std::make_unique<DemSimulator<D, true, true>>(scene, std::move(initial));
+    return std::make_unique<DemSimulator<D, true, false>>(scene, std::move(initial));
+  }
+  if (mono) return std::make_unique<DemSimulator<D, false, true>>(scene, std::move(initial));
+  return std::make_unique<DemSimulator<D, false, false>>(scene, std::move(initial));
 }
 
-template class DemSimulator<2, false>;
-template class DemSimulator<2, true>;
-template class DemSimulator<3, false>;
-template class DemSimulator<3, true>;
+template class DemSimulator<2, false, false>;
+template class DemSimulator<2, false, true>;
+template class DemSimulator<2, true, false>;
+template class DemSimulator<2, true, true>;
+template class DemSimulator<3, false, false>;
+template class DemSimulator<3, false, true>;
+template class DemSimulator<3, true, false>;
+template class DemSimulator<3, true, true>;
 template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
 

@@ -1,7 +1,7 @@
 // The soft-sphere DEM backend: one half-neighbour-list pair loop with the contact law inlined,
 // Adams-Bashforth-2 [B.21]-[B.24] or velocity Verlet, the tethered or fixed target wall, and
 // removal of grains that leave the region. Frictionless scenes compile without contact history
-// and rotation (kFriction = false).
+// and rotation (kFriction = false); grains all of one size without radius lookups (kMono).
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,7 @@
 
 namespace granjet::dem {
 
-template <int D, bool kFriction>
+template <int D, bool kFriction, bool kMono = false>
 class DemSimulator final : public Simulator<D> {
  public:
   using Law = LinearSpringDashpot<D, kFriction>;
@@ -49,6 +49,11 @@ class DemSimulator final : public Simulator<D> {
   void remove_escaped();
   void check_finite() const;
   std::size_t index_of(GrainId id) const { return index_of_id_[id]; }
+  // Grain i's radius; one constant when all grains have the size of the first.
+  double radius_of(std::span<const double> radius, std::size_t i) const {
+    if constexpr (kMono) return radius[0];
+    return radius[i];
+  }
   Vec<D> history(std::uint32_t k) const {
     if constexpr (kFriction) return shear_[k];
     return Vec<D>::Zero();
