@@ -43,9 +43,7 @@ DemSimulator<D, kFriction, kMono>::DemSimulator(const Scene& scene, Particles<D>
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
   rebuild();
   if (scene.run.integrator == IntegratorKind::kVelocityVerlet)
-    force_pass([](std::size_t) { return 0.0; });  // F(t0), for the first predictor
-  force_prev_.swap(force_);
-  torque_prev_.swap(torque_);
+    force_pass([](std::size_t) { return 0.0; });  // F(t0) into force_prev_, for the predictor
   initial_energy_ = energy().total();
 }
 
@@ -105,13 +103,11 @@ double DemSimulator<D, kFriction, kMono>::advance_ab2(std::size_t i) {
   // The step moved grain i by dt |v + v_new|/2 <= dt max(|v|, |v_new|).
   const double speed2 = std::max(v[i].squaredNorm(), v_new.squaredNorm());
   v[i] = v_new;
-  force_prev_[i] = force_[i];
-  force_[i].setZero();  // ready for the next pass
+  force_prev_[i].setZero();  // the swap after the pass makes it F(t-dt) and this the next F
   if constexpr (kFriction) {
     const Spin<D>& t_prev = first_step_ ? torque_[i] : torque_prev_[i];
     p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (3.0 * torque_[i] - t_prev);
-    torque_prev_[i] = torque_[i];
-    torque_[i] = Dim<D>::zero_spin();
+    torque_prev_[i] = Dim<D>::zero_spin();
   }
   return speed2;
 }
@@ -134,12 +130,10 @@ double DemSimulator<D, kFriction, kMono>::predict_verlet(std::size_t i) {
 template <int D, bool kFriction, bool kMono>
 void DemSimulator<D, kFriction, kMono>::correct_verlet(std::size_t i) {
   p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
-  force_prev_[i] = force_[i];
-  force_[i].setZero();
+  force_prev_[i].setZero();  // see advance_ab2
   if constexpr (kFriction) {
     p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (torque_[i] - torque_prev_[i]);
-    torque_prev_[i] = torque_[i];
-    torque_[i] = Dim<D>::zero_spin();
+    torque_prev_[i] = Dim<D>::zero_spin();
   }
 }
 
@@ -241,6 +235,9 @@ double DemSimulator<D, kFriction, kMono>::force_pass(AfterRow&& after_row) {
     throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
                           " of the smaller radius",
                       step_, time(), {p_.id()[blown_i], p_.id()[blown_j]});
+  // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
+  force_.swap(force_prev_);
+  if constexpr (kFriction) torque_.swap(torque_prev_);
   return largest;
 }
 
