@@ -35,7 +35,12 @@ class EventCalendar {
   // Sets the grain's entry to `time`, earlier or later than before.
   void schedule(std::uint32_t grain, double time) {
     if (scheduled_[grain]) {
-      heap_.update(handles_[grain], CalendarEntry{time, grain});
+      // "Greater" is earlier: an earlier time only sifts up, a later one only down.
+      const bool earlier = time < (*handles_[grain]).time;
+      if (earlier)
+        heap_.increase(handles_[grain], CalendarEntry{time, grain});
+      else
+        heap_.decrease(handles_[grain], CalendarEntry{time, grain});
     } else {
       handles_[grain] = heap_.push(CalendarEntry{time, grain});
       scheduled_[grain] = 1;
