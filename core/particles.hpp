@@ -85,4 +85,13 @@ class Particles {
   std::vector<double> inv_mass_;
 };
 
+// Total momentum of the movable grains (immovable ones, inverse mass 0, carry none).
+template <int D>
+Vec<D> total_momentum(const Particles<D>& p) {
+  Vec<D> sum = Vec<D>::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.inverse_mass()[i] > 0.0) sum += p.mass()[i] * p.velocity()[i];
+  return sum;
+}
+
 }  // namespace granjet
