@@ -35,7 +35,7 @@ Particles<D> cluster(int per_side, std::uint64_t seed) {
   return p;
 }
 
-TYPED_TEST(ElasticCluster, MomentumToRoundOffEnergyWithinHalfAPercent) {
+TYPED_TEST(ElasticCluster, MomentumToRoundOffEnergyWithinTwoPerMille) {
   constexpr int D = TypeParam::kDim;
   Scene scene;
   scene.kind = SceneKind::kBinary;  // free space: no target, no removal region
@@ -50,7 +50,9 @@ TYPED_TEST(ElasticCluster, MomentumToRoundOffEnergyWithinHalfAPercent) {
   EXPECT_NEAR((total_momentum(sim.particles()) - p0).norm(), 0.0, 1e-12 * start.size());
   EXPECT_GT(sim.stats().steps, 9999);
   const double drift = sim.energy().total() / e0 - 1.0;
-  EXPECT_LT(std::abs(drift), 5e-3) << "relative energy drift " << drift;
+  // AB2 is not symplectic: each e = 1 collision at dt = 0.02 t_c is off by ~1e-4 of its energy
+  // (measured drift 9e-4 in 2D, 2.5e-4 in 3D over the whole run).
+  EXPECT_LT(std::abs(drift), 2e-3) << "relative energy drift " << drift;
 }
 
 }  // namespace
