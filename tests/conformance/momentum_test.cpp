@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "backends.hpp"
-#include "core/random.hpp"
+#include "../common/lattice_cluster.hpp"
 
 namespace granjet {
 namespace {
@@ -13,26 +13,6 @@ namespace {
 template <class T>
 class MomentumConformance : public ::testing::Test {};
 TYPED_TEST_SUITE(MomentumConformance, testing::AllBackends);
-
-// Grains on a square (cubic) lattice of spacing 1.05 with random velocities of order 1 and
-// masses between 1 and 2.
-template <int D>
-Particles<D> cluster(int per_side, std::uint64_t seed) {
-  Random rng(seed);
-  Particles<D> p;
-  const int total = static_cast<int>(std::pow(per_side, D));
-  for (int n = 0; n < total; ++n) {
-    Vec<D> x, v;
-    int rest = n;
-    for (int d = 0; d < D; ++d) {
-      x[d] = 1.05 * (rest % per_side);
-      rest /= per_side;
-      v[d] = 2.0 * rng.uniform() - 1.0;
-    }
-    p.add(n, GrainKind::kFree, x, v, 0.5, 1.0 + rng.uniform());
-  }
-  return p;
-}
 
 TYPED_TEST(MomentumConformance, ConservedToRoundOffThroughManyCollisions) {
   using Backend = typename TypeParam::Backend;
@@ -43,7 +23,7 @@ TYPED_TEST(MomentumConformance, ConservedToRoundOffThroughManyCollisions) {
   scene.contact.restitution = 0.75;
   scene.contact.friction = 0.0;
   scene.ed.restitution_law = RestitutionLaw::kConstant;
-  const Particles<D> start = cluster<D>(D == 2 ? 12 : 6, 3);
+  const Particles<D> start = testing::lattice_cluster<D>(D == 2 ? 12 : 6, 3, 1.0, 1.0);
   auto sim = Backend::template make<D>(scene, start);
   sim->advance_to(5.0);
   EXPECT_GT(sim->energy().dissipated, 0.05 * (sim->energy().kinetic + sim->energy().dissipated));
