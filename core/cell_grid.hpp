@@ -1,5 +1,5 @@
 // Cell binning for neighbour search: grains are counting-sorted by cell over their bounding
-// box, so after reordering by order() every cell is a contiguous index range.
+// box (or a periodic box), so after reordering by order() every cell is a contiguous index range.
 #pragma once
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "core/dim.hpp"
@@ -30,25 +31,29 @@ class CellGrid {
     double edge = min_edge;
     const double max_cells = kMaxCellsPerGrain * std::max<std::size_t>(positions.size(), 1);
     while (cell_count(extent, edge) > max_cells) edge *= 1.25;
+    periodic_ = false;
     lo_ = lo;
-    inv_edge_ = 1.0 / edge;
-    total_ = 1;
     for (int d = 0; d < D; ++d) {
-      dims_[d] = std::max(1, static_cast<int>(extent[d] * inv_edge_));
-      total_ *= dims_[d];
+      inv_edge_[d] = 1.0 / edge;
+      // Cells are at least `edge` wide: dims_ rounds down.
+      dims_[d] = std::max(1, static_cast<int>(extent[d] * inv_edge_[d]));
     }
-    // Cells are at least `edge` wide: dims_ rounds down.
-    cell_of_.resize(positions.size());
-    start_.assign(total_ + 1, 0);
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      cell_of_[i] = cell_index(positions[i]);
-      ++start_[cell_of_[i] + 1];
+    bin(positions);
+  }
+
+  // Tiles the periodic box [0, box) (positions wrapped into it) with cells of at least
+  // `min_edge`; neighbour cells wrap around. Three cells per axis at least, so that a cell's
+  // neighbours are distinct cells and each pair of cells is visited once.
+  void build_periodic(std::span<const Vec<D>> positions, const Vec<D>& box, double min_edge) {
+    periodic_ = true;
+    lo_.setZero();
+    for (int d = 0; d < D; ++d) {
+      dims_[d] = static_cast<int>(box[d] / min_edge);
+      if (dims_[d] < 3)
+        throw std::invalid_argument("periodic box narrower than three neighbour cells");
+      inv_edge_[d] = dims_[d] / box[d];
     }
-    for (std::size_t c = 0; c < total_; ++c) start_[c + 1] += start_[c];
-    order_.resize(positions.size());
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < positions.size(); ++i)
-      order_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+    bin(positions);
   }
 
   // Grain indices sorted by cell (stable within a cell).
@@ -75,7 +80,8 @@ class CellGrid {
       std::size_t linear = 0, stride = 1;
       bool inside = true;
       for (int d = 0; d < D; ++d) {
-        const int k = q[d] + off[d];
+        int k = q[d] + off[d];
+        if (periodic_) k = (k + dims_[d]) % dims_[d];
         inside = inside && k >= 0 && k < dims_[d];
         linear += static_cast<std::size_t>(k) * stride;
         stride *= dims_[d];
@@ -87,6 +93,22 @@ class CellGrid {
  private:
   static constexpr double kMaxCellsPerGrain = 16.0;
 
+  void bin(std::span<const Vec<D>> positions) {
+    total_ = 1;
+    for (int d = 0; d < D; ++d) total_ *= dims_[d];
+    cell_of_.resize(positions.size());
+    start_.assign(total_ + 1, 0);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      cell_of_[i] = cell_index(positions[i]);
+      ++start_[cell_of_[i] + 1];
+    }
+    for (std::size_t c = 0; c < total_; ++c) start_[c + 1] += start_[c];
+    order_.resize(positions.size());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      order_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+  }
+
   static double cell_count(const Vec<D>& extent, double edge) {
     double n = 1.0;
     for (int d = 0; d < D; ++d) n *= std::max(1.0, std::floor(extent[d] / edge));
@@ -96,7 +118,7 @@ class CellGrid {
   std::uint32_t cell_index(const Vec<D>& x) const {
     std::size_t linear = 0, stride = 1;
     for (int d = 0; d < D; ++d) {
-      const int k = std::clamp(static_cast<int>((x[d] - lo_[d]) * inv_edge_), 0, dims_[d] - 1);
+      const int k = std::clamp(static_cast<int>((x[d] - lo_[d]) * inv_edge_[d]), 0, dims_[d] - 1);
       linear += static_cast<std::size_t>(k) * stride;
       stride *= dims_[d];
     }
@@ -123,7 +145,8 @@ class CellGrid {
   }
 
   Vec<D> lo_ = Vec<D>::Zero();
-  double inv_edge_ = 1.0;
+  Vec<D> inv_edge_ = Vec<D>::Ones();
+  bool periodic_ = false;
   std::array<int, D> dims_{};
   std::size_t total_ = 0;
   std::vector<std::uint32_t> cell_of_;

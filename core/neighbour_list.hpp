@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/cell_grid.hpp"
+#include "core/space.hpp"
 
 namespace granjet {
 
@@ -17,19 +19,49 @@ struct PairList {
   std::size_t size() const { return partner.size(); }
 };
 
+namespace detail {
+
+// Adds pairs (i, j), i > j, found after row j was closed (across a periodic boundary the
+// forward cells can come earlier in memory) at the end of row j.
+inline void merge_late_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& late,
+                             PairList& out) {
+  if (late.empty()) return;
+  const std::size_t n = out.first.size() - 1;
+  std::vector<std::uint32_t> first(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] = out.first[i + 1] - out.first[i];
+  for (const auto& [row, j] : late) ++first[row + 1];
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  std::vector<std::uint32_t> partner(first[n]);
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t k = out.first[i]; k < out.first[i + 1]; ++k)
+      partner[fill[i]++] = out.partner[k];
+  for (const auto& [row, j] : late) partner[fill[row]++] = j;
+  out.first = std::move(first);
+  out.partner = std::move(partner);
+}
+
+}  // namespace detail
+
 // `positions` must already be in grid order (cell c holds indices start(c)..start(c+1)-1).
-// `excluded(i, j)` drops pairs that never interact (e.g. two wall grains).
-template <int D, class Excluded>
+// `excluded(i, j)` drops pairs that never interact (e.g. two wall grains); `space` gives the
+// separation (plain or minimum image).
+template <int D, class Excluded, class Space = OpenSpace<D>>
 void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions,
                       std::span<const double> radius, double skin, Excluded&& excluded,
-                      PairList& out) {
+                      PairList& out, const Space& space = {}) {
   const std::size_t n = positions.size();
   out.first.assign(n + 1, 0);
   out.partner.clear();
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> late;  // (row, partner), row closed
   auto consider = [&](std::uint32_t i, std::uint32_t j) {
     const double cut = radius[i] + radius[j] + skin;
-    if ((positions[i] - positions[j]).squaredNorm() < cut * cut && !excluded(i, j))
+    if (space.separation(positions[i], positions[j]).squaredNorm() >= cut * cut || excluded(i, j))
+      return;
+    if (j > i)
       out.partner.push_back(j);
+    else
+      late.emplace_back(j, i);
   };
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;  // the forward cells' grains
   for (std::size_t c = 0; c < grid.cells(); ++c) {
@@ -42,12 +74,13 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
     });
     for (std::uint32_t i = begin; i < end; ++i) {
       for (std::uint32_t j = i + 1; j < end; ++j) consider(i, j);
-      // Forward cells come later in memory, so j > i here too.
+      // In open space forward cells come later in memory, so j > i here too.
       for (const auto& [first, last] : ranges)
         for (std::uint32_t j = first; j < last; ++j) consider(i, j);
       out.first[i + 1] = static_cast<std::uint32_t>(out.partner.size());
     }
   }
+  detail::merge_late_pairs(late, out);
 }
 
 }  // namespace granjet

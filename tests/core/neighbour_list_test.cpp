@@ -51,5 +51,53 @@ TYPED_TEST(NeighbourList, HalfListMatchesBruteForce) {
   EXPECT_EQ(found, expected);
 }
 
+// Across a periodic box the list holds every minimum-image pair once, still with i < j (the
+// soft DEM's fused force pass relies on it), also for pairs found across the wrap.
+TYPED_TEST(NeighbourList, PeriodicHalfListMatchesMinimumImageBruteForce) {
+  constexpr int D = TypeParam::kDim;
+  std::mt19937_64 rng(11);
+  const PeriodicBox<D> space(Vec<D>::Constant(7.0));
+  std::uniform_real_distribution<double> u(0.0, 7.0);
+  std::vector<Vec<D>> x(D == 2 ? 60 : 250);
+  for (Vec<D>& xi : x)
+    for (int d = 0; d < D; ++d) xi[d] = u(rng);
+  const std::vector<double> radius(x.size(), 0.5);
+  const double skin = 0.3;
+  CellGrid<D> grid;
+  grid.build_periodic(x, space.box, 1.0 + skin);
+  std::vector<Vec<D>> sorted;
+  for (std::uint32_t k : grid.order()) sorted.push_back(x[k]);
+  PairList list;
+  build_half_pairs<D>(grid, sorted, radius, skin, [](auto, auto) { return false; }, list, space);
+  std::multiset<std::pair<std::uint32_t, std::uint32_t>> found;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> expected;
+  for (std::uint32_t i = 0; i < sorted.size(); ++i)
+    for (std::uint32_t k = list.first[i]; k < list.first[i + 1]; ++k) {
+      ASSERT_GT(list.partner[k], i);
+      found.insert({i, list.partner[k]});
+    }
+  std::size_t across = 0;
+  for (std::uint32_t i = 0; i < sorted.size(); ++i)
+    for (std::uint32_t j = i + 1; j < sorted.size(); ++j) {
+      if (space.separation(sorted[i], sorted[j]).norm() >= 1.0 + skin) continue;
+      expected.insert({i, j});
+      across += (sorted[i] - sorted[j]).norm() >= 1.0 + skin;
+    }
+  EXPECT_GT(across, 5u);
+  EXPECT_EQ(found, std::multiset(expected.begin(), expected.end()));  // no pair twice
+}
+
+TEST(PeriodicBox, MinimumImageAndWrap) {
+  const PeriodicBox<2> box(Vec<2>(10.0, 4.0));
+  EXPECT_TRUE(box.separation(Vec<2>(9.5, 0.5), Vec<2>(0.5, 3.5)).isApprox(Vec<2>(-1.0, 1.0)));
+  Vec<2> x(-0.25, 9.0);
+  box.wrap(x);
+  EXPECT_TRUE(x.isApprox(Vec<2>(9.75, 1.0)));
+  Vec<2> tiny(-1e-18, 0.0);  // would round to the box edge itself
+  box.wrap(tiny);
+  EXPECT_GE(tiny[0], 0.0);
+  EXPECT_LT(tiny[0], 10.0);
+}
+
 }  // namespace
 }  // namespace granjet
