@@ -30,14 +30,11 @@ void GasObserver<D>::observe(Simulator<D>& sim) {
   last_time_ = t;
   if (t < next_) return;
   const double temperature = 2.0 * sim.energy().kinetic / (D * grains_);
-  const double x = 2.0 * static_cast<double>(sim.stats().collisions) / grains_;
-  const double y = std::log(temperature);
   ++samples_;
   sum_t_ += temperature;
-  sum_x_ += x;
-  sum_y_ += y;
-  sum_xx_ += x * x;
-  sum_xy_ += x * y;
+  per_collision_.add(2.0 * static_cast<double>(sim.stats().collisions) / grains_,
+                     std::log(temperature));
+  in_time_.add(t, 1.0 / std::sqrt(temperature));
   while (next_ <= t) next_ += interval_;
 }
 
@@ -54,8 +51,12 @@ double GasObserver<D>::compressibility() const {
 
 template <int D>
 double GasObserver<D>::cooling_per_collision() const {
-  const double n = static_cast<double>(samples_);
-  return (n * sum_xy_ - sum_x_ * sum_y_) / (n * sum_xx_ - sum_x_ * sum_x_);
+  return per_collision_.slope();
+}
+
+template <int D>
+double GasObserver<D>::cooling_rate(double initial_temperature) const {
+  return 2.0 * std::sqrt(initial_temperature) * in_time_.slope();
 }
 
 template class GasObserver<2>;

@@ -5,13 +5,17 @@
 //   P V = N T + (1/(D tau)) sum over collisions of r_ij . J_ij (r_ij = r_i - r_j, J_ij the
 //   impulse on i), so Z = 1 + sum r_ij . J_ij / (D N T tau) [spec §6, stress];
 // - hcs: cooling per collision, the least-squares slope of ln T against collisions per grain
-//   (2 collisions / N: each collision counts for both grains), T = sum m v^2 / (D N).
+//   (2 collisions / N: each collision counts for both grains), T = sum m v^2 / (D N); and,
+//   for backends that do not count collisions too, the cooling rate in time: Haff's law
+//   T(t) = T0 / (1 + t/t0)^2 makes T^(-1/2) linear in t, and the rate -d ln T/dt at T0 is
+//   2 sqrt(T0) times its least-squares slope.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "core/scene.hpp"
+#include "analysis/line_fit.hpp"
 #include "core/simulator.hpp"
 
 namespace granjet {
@@ -29,6 +33,7 @@ class GasObserver {
   double temperature() const;  // mean over the window's samples
   double compressibility() const;
   double cooling_per_collision() const;
+  double cooling_rate(double initial_temperature) const;
   std::int64_t samples() const { return samples_; }
 
  private:
@@ -41,9 +46,11 @@ class GasObserver {
   double grains_;
   std::vector<PairImpulse<D>> transfers_;
   double virial_ = 0.0;  // sum of r_ij . J_ij over the window
-  // Sums for the temperature mean and the fit of y = ln T against x = collisions per grain.
+  // Sums for the temperature mean and the fits of ln T against collisions per grain and of
+  // T^(-1/2) against time.
   std::int64_t samples_ = 0;
-  double sum_t_ = 0.0, sum_x_ = 0.0, sum_y_ = 0.0, sum_xx_ = 0.0, sum_xy_ = 0.0;
+  double sum_t_ = 0.0;
+  analysis::LineFit per_collision_, in_time_;
 };
 
 extern template class GasObserver<2>;

@@ -31,8 +31,7 @@ void print_help() {
             << ": granular jets on a soft-sphere DEM and an event-driven backend\n\n"
             << kUsage << R"(
 run options:
-  --backend NAME    soft_dem (default) or event_driven (hard spheres; the only one for the
-                    periodic scenes, scene.kind = gas | hcs)
+  --backend NAME    soft_dem (default) or event_driven (hard spheres)
   --set KEY=VALUE   override a scene key (repeatable)
   --out FILE        HDF5/H5MD output (default: SCENE's stem + .h5); an .xmf sidecar
                     beside it opens in ParaView (XDMF Reader)

@@ -202,9 +202,14 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       summary["theory"] = {{"compressibility", D == 3 ? kinetic::carnahan_starling(scene.gas.phi)
                                                       : kinetic::henderson(scene.gas.phi)}};
     } else {
-      summary["measured"]["cooling_per_collision"] = gas->cooling_per_collision();
-      summary["theory"] = {{"cooling_per_collision",
-                            kinetic::cooling_per_collision(scene.contact.restitution, D)}};
+      // Backend-neutral: -d ln T/dt at gas.temperature (the soft backend counts contacts, not
+      // collisions).
+      summary["measured"]["cooling_rate"] = gas->cooling_rate(scene.gas.temperature);
+      if (sim->stats().collisions > 0) {
+        summary["measured"]["cooling_per_collision"] = gas->cooling_per_collision();
+        summary["theory"] = {{"cooling_per_collision",
+                              kinetic::cooling_per_collision(scene.contact.restitution, D)}};
+      }
     }
   }
   if (status == "complete") {

@@ -18,9 +18,11 @@ double sticky_max(double largest, double value) {
 
 }  // namespace
 
-template <int D, bool kFriction, bool kMono>
-DemSimulator<D, kFriction, kMono>::DemSimulator(const Scene& scene, Particles<D> initial)
+template <int D, bool kFriction, bool kMono, class Space>
+DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
+                                                        Space space)
     : scene_(scene),
+      space_(std::move(space)),
       p_(std::move(initial)),
       law_{contact_coefficients(scene.contact), scene.dt()},
       dt_(scene.dt()),
@@ -47,8 +49,8 @@ DemSimulator<D, kFriction, kMono>::DemSimulator(const Scene& scene, Particles<D>
   initial_energy_ = energy().total();
 }
 
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::advance_to(double t) {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::advance_to(double t) {
   // The first step at or after t (a relative 1e-9 absorbs round-off in t / dt).
   const auto target = static_cast<std::int64_t>(std::ceil(t / dt_ - 1e-9));
   while (step_ < target) step();
@@ -60,8 +62,8 @@ void DemSimulator<D, kFriction, kMono>::advance_to(double t) {
 // The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
 // dt times the largest speed of each step, a bound on every displacement that costs no extra
 // pass over stored positions.
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::step() {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
     add_travel(force_pass([&](std::size_t i) { return advance_ab2(i); }));
@@ -85,15 +87,15 @@ void DemSimulator<D, kFriction, kMono>::step() {
 // Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
 // x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
 // F(t-dt) = F(t) [spec §3].
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::add_travel(double largest_speed2) {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2) {
   travel_ += dt_ * std::sqrt(largest_speed2);
   // Written so that a NaN speed also triggers the rebuild, which reports it.
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
-template <int D, bool kFriction, bool kMono>
-double DemSimulator<D, kFriction, kMono>::advance_ab2(std::size_t i) {
+template <int D, bool kFriction, bool kMono, class Space>
+double DemSimulator<D, kFriction, kMono, Space>::advance_ab2(std::size_t i) {
   auto x = p_.position();
   auto v = p_.velocity();
   const double inv_m = p_.inverse_mass()[i];
@@ -115,8 +117,8 @@ double DemSimulator<D, kFriction, kMono>::advance_ab2(std::size_t i) {
 // Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
 // this predicted v(t+dt) rather than the half-step velocity, which would lag by dt/2 and bias
 // the restitution by O(dt) (LAMMPS's nve/sphere gives e = 0.7567 for 0.75 at dt = t_c/50).
-template <int D, bool kFriction, bool kMono>
-double DemSimulator<D, kFriction, kMono>::predict_verlet(std::size_t i) {
+template <int D, bool kFriction, bool kMono, class Space>
+double DemSimulator<D, kFriction, kMono, Space>::predict_verlet(std::size_t i) {
   Vec<D>& v = p_.velocity()[i];
   const Vec<D> dv = (dt_ * p_.inverse_mass()[i]) * force_prev_[i];
   p_.position()[i] += dt_ * (v + 0.5 * dv);
@@ -127,8 +129,8 @@ double DemSimulator<D, kFriction, kMono>::predict_verlet(std::size_t i) {
 }
 
 // Velocity Verlet, corrector: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::correct_verlet(std::size_t i) {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::correct_verlet(std::size_t i) {
   p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
   force_prev_[i].setZero();  // see advance_ab2
   if constexpr (kFriction) {
@@ -137,9 +139,9 @@ void DemSimulator<D, kFriction, kMono>::correct_verlet(std::size_t i) {
   }
 }
 
-template <int D, bool kFriction, bool kMono>
+template <int D, bool kFriction, bool kMono, class Space>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction, kMono>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
+void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
                                                      OnApart&& on_apart) const {
   const auto x = p_.position();
   const auto v = p_.velocity();
@@ -149,7 +151,7 @@ void DemSimulator<D, kFriction, kMono>::for_each_contact_of(std::size_t i, OnCon
   const double radius_i = radius_of(radius, i);
   for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k) {
     const std::uint32_t j = pairs_.partner[k];
-    const Vec<D> r_ij = x_i - x[j];
+    const Vec<D> r_ij = space_.separation(x_i, x[j]);
     const double radius_j = kMono ? radius_i : radius[j];
     const double reach = radius_i + radius_j;
     const double d2 = r_ij.squaredNorm();
@@ -165,9 +167,9 @@ void DemSimulator<D, kFriction, kMono>::for_each_contact_of(std::size_t i, OnCon
   }
 }
 
-template <int D, bool kFriction, bool kMono>
+template <int D, bool kFriction, bool kMono, class Space>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction, kMono>::for_each_contact(OnContact&& on_contact,
+void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_contact,
                                                   OnApart&& on_apart) const {
   for (std::size_t i = 0; i < p_.size(); ++i)
     for_each_contact_of(
@@ -179,10 +181,10 @@ void DemSimulator<D, kFriction, kMono>::for_each_contact(OnContact&& on_contact,
 // Accumulates all forces at the current state and calls after_row(i) as soon as grain i's
 // force is complete. That is right after row i of the half list: rows k < i have added their
 // share already, and later rows never touch i. force_ and torque_ must be zero on entry.
-template <int D, bool kFriction, bool kMono>
+template <int D, bool kFriction, bool kMono, class Space>
 template <class AfterRow>
 [[gnu::flatten]]  // the hot loop: inline the contact law and the row visitor into it
-double DemSimulator<D, kFriction, kMono>::force_pass(AfterRow&& after_row) {
+double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row) {
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   const auto radius = p_.radius();
@@ -241,8 +243,8 @@ double DemSimulator<D, kFriction, kMono>::force_pass(AfterRow&& after_row) {
   return largest;
 }
 
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::check_finite() const {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::check_finite() const {
   std::vector<GrainId> bad;
   for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
     if (!p_.position()[i].allFinite() || !p_.velocity()[i].allFinite()) bad.push_back(p_.id()[i]);
@@ -251,8 +253,8 @@ void DemSimulator<D, kFriction, kMono>::check_finite() const {
 
 // Jet grains farther than region.radius from the axis or region.below behind the target plane
 // are removed; their energy is booked so the balance still closes.
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::remove_escaped() {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
   if (!scene_.has_wall()) return;
   constexpr int kAxis = Dim<D>::kJetAxis;
   const double r2_max = scene_.region.radius * scene_.region.radius;
@@ -282,8 +284,8 @@ void DemSimulator<D, kFriction, kMono>::remove_escaped() {
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::rebuild() {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
   check_finite();
   // The tangential history of touching pairs, by grain ids (indices change below).
   struct History {
@@ -300,7 +302,13 @@ void DemSimulator<D, kFriction, kMono>::rebuild() {
   remove_escaped();
   double max_radius = 0.0;
   for (double r : p_.radius()) max_radius = std::max(max_radius, r);
-  grid_.build(p_.position(), 2.0 * max_radius + scene_.run.skin);
+  const double cut = 2.0 * max_radius + scene_.run.skin;
+  if constexpr (Space::kPeriodic) {
+    for (Vec<D>& x : p_.position()) space_.wrap(x);
+    grid_.build_periodic(p_.position(), space_.box, cut);
+  } else {
+    grid_.build(p_.position(), cut);
+  }
   const auto order = grid_.order();
   p_.gather(order);
   Particles<D>::gather_one(force_prev_, order);
@@ -316,7 +324,7 @@ void DemSimulator<D, kFriction, kMono>::rebuild() {
                       [&](std::uint32_t i, std::uint32_t j) {
                         return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
                       },
-                      pairs_);
+                      pairs_, space_);
   if constexpr (kFriction) {
     shear_.assign(pairs_.size(), Vec<D>::Zero());
     touching_.assign(pairs_.size(), 0);
@@ -338,8 +346,8 @@ void DemSimulator<D, kFriction, kMono>::rebuild() {
   ++stats_.neighbour_rebuilds;
 }
 
-template <int D, bool kFriction, bool kMono>
-void DemSimulator<D, kFriction, kMono>::collect_transfers(std::vector<PairImpulse<D>>& out) {
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
   const double elapsed = time() - last_collect_time_;
   last_collect_time_ = time();
   const auto x = p_.position();
@@ -348,12 +356,13 @@ void DemSimulator<D, kFriction, kMono>::collect_transfers(std::vector<PairImpuls
                        const Vec<D>& v_rel) {
     Vec<D> shear = history(k);  // a copy: sampling must not advance the history
     const Vec<D> f = law_.force(g, v_rel, shear);
-    out.push_back({id[i], id[j], x[i], x[j], elapsed * f});
+    // The partner's nearest image: position_i - position_j is the contact's separation.
+    out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
   }, [](std::uint32_t) {});
 }
 
-template <int D, bool kFriction, bool kMono>
-EnergyBalance DemSimulator<D, kFriction, kMono>::energy() const {
+template <int D, bool kFriction, bool kMono, class Space>
+EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;  // immovable wall grains carry no energy
@@ -371,8 +380,27 @@ EnergyBalance DemSimulator<D, kFriction, kMono>::energy() const {
   return e;
 }
 
+// The periodic gas scenes: unit grains (so monodisperse) in the box of gas_lattice.
+template <int D>
+std::unique_ptr<Simulator<D>> make_periodic_dem_simulator(const Scene& scene) {
+  const PeriodicBox<D> box(gas_lattice<D>(scene.gas).box);
+  const double cut = 1.0 + scene.run.skin;
+  if (box.box.minCoeff() < 3.0 * cut)
+    throw InputError("gas.grains", "the periodic box (" + std::to_string(box.box.minCoeff()) +
+                                       " d across) must be at least three neighbour cells of "
+                                       "1 + run.skin = " + std::to_string(cut) +
+                                       " d wide; use more grains or a lower gas.phi");
+  Particles<D> initial = build_initial_state<D>(scene);
+  if (scene.frictional())
+    return std::make_unique<DemSimulator<D, true, true, PeriodicBox<D>>>(scene, std::move(initial),
+                                                                         box);
+  return std::make_unique<DemSimulator<D, false, true, PeriodicBox<D>>>(scene, std::move(initial),
+                                                                        box);
+}
+
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
+  if (scene.periodic()) return make_periodic_dem_simulator<D>(scene);
   Particles<D> initial = build_initial_state<D>(scene);
   const auto radii = initial.radius();
   const bool mono = std::adjacent_find(radii.begin(), radii.end(), std::not_equal_to<>()) ==
@@ -393,6 +421,10 @@ template class DemSimulator<3, false, false>;
 template class DemSimulator<3, false, true>;
 template class DemSimulator<3, true, false>;
 template class DemSimulator<3, true, true>;
+template class DemSimulator<2, false, true, PeriodicBox<2>>;
+template class DemSimulator<2, true, true, PeriodicBox<2>>;
+template class DemSimulator<3, false, true, PeriodicBox<3>>;
+template class DemSimulator<3, true, true, PeriodicBox<3>>;
 template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
 

@@ -1,7 +1,8 @@
 // The soft-sphere DEM backend: one half-neighbour-list pair loop with the contact law inlined,
 // Adams-Bashforth-2 [B.21]-[B.24] or velocity Verlet, the tethered or fixed target wall, and
 // removal of grains that leave the region. Frictionless scenes compile without contact history
-// and rotation (kFriction = false); grains all of one size without radius lookups (kMono).
+// and rotation (kFriction = false); grains all of one size without radius lookups (kMono); the
+// periodic gas scenes use minimum-image separations (Space = PeriodicBox), all others none.
 #pragma once
 
 #include <cstdint>
@@ -10,18 +11,19 @@
 
 #include "core/neighbour_list.hpp"
 #include "core/scene.hpp"
+#include "core/space.hpp"
 #include "core/simulator.hpp"
 #include "soft_dem/contact_law.hpp"
 #include "soft_dem/tethered_wall.hpp"
 
 namespace granjet::dem {
 
-template <int D, bool kFriction, bool kMono = false>
+template <int D, bool kFriction, bool kMono = false, class Space = OpenSpace<D>>
 class DemSimulator final : public Simulator<D> {
  public:
   using Law = LinearSpringDashpot<D, kFriction>;
 
-  DemSimulator(const Scene& scene, Particles<D> initial);
+  DemSimulator(const Scene& scene, Particles<D> initial, Space space = {});
 
   std::string_view backend() const override { return "soft_dem"; }
   // Steps until time() >= t: the state moves on whole steps of dt.
@@ -67,6 +69,7 @@ class DemSimulator final : public Simulator<D> {
   void for_each_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
 
   Scene scene_;
+  Space space_;
   Particles<D> p_;
   Law law_;
   double dt_;

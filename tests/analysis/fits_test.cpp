@@ -1,6 +1,7 @@
 // The fits recover the parameters of noisy synthetic data within their error bars, and the error
 // bars are calibrated (about 68% of repeated fits lie within one standard error).
 #include "analysis/fits.hpp"
+#include "analysis/line_fit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -121,6 +122,28 @@ TEST(Fits, Eq6_9_StandardErrorsAreCalibrated) {
   }
   EXPECT_NEAR(mu_s_within / double(kTrials), 0.683, 0.1);
   EXPECT_NEAR(i_0_within / double(kTrials), 0.683, 0.1);
+}
+
+// The running least-squares line recovers a known line from noisy samples with the textbook
+// normal-equation solution (checked against a direct solve of the two sums).
+TEST(LineFit, RecoversSlopeAndIntercept) {
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  LineFit fit;
+  std::vector<double> x, y;
+  for (int k = 0; k < 50; ++k) {
+    x.push_back(0.2 * k);
+    y.push_back(2.0 - 0.5 * x.back() + noise(rng));
+    fit.add(x.back(), y.back());
+  }
+  EXPECT_NEAR(fit.slope(), -0.5, 0.002);
+  EXPECT_NEAR(fit.intercept(), 2.0, 0.01);
+  LineFit exact;
+  exact.add(1.0, 3.0);
+  exact.add(3.0, 7.0);
+  EXPECT_DOUBLE_EQ(exact.slope(), 2.0);
+  EXPECT_DOUBLE_EQ(exact.intercept(), 1.0);
+  EXPECT_EQ(exact.size(), 2);
 }
 
 }  // namespace
