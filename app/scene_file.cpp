@@ -152,6 +152,9 @@ const std::vector<Key>& keys() {
                          FIELD(run.max_overlap), {0.0, true, 1.0, false}));
     k.push_back(real_key("run.progress_interval", "sim time between progress rows",
                          FIELD(run.progress_interval), kPositive));
+    k.push_back(integer_key("run.threads",
+                            "OpenMP threads of the soft DEM (results are bit-identical for any)",
+                            FIELD(run.threads), 1));
     k.push_back(real_key("jet.diameter", "D_jet (3D) or strip width 2 R_jet (2D), in d",
                          FIELD(jet.diameter), kPositive));
     k.push_back(real_key("jet.phi_tilde", "fraction of lattice sites kept, phi~0",

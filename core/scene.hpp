@@ -31,6 +31,7 @@ struct RunSpec {
   double skin = 0.3;          // Verlet skin in d
   double max_overlap = 0.5;   // blow-up when overlap exceeds this fraction of the smaller radius
   double progress_interval = 1.0;  // sim time between progress rows
+  int threads = 1;  // soft DEM OpenMP threads; the results do not depend on it, bit for bit
 };
 
 struct JetSpec {

@@ -47,6 +47,11 @@ class DemSimulator final : public Simulator<D> {
   // Returns the largest value after_row returned.
   template <class AfterRow>
   double force_pass(AfterRow&& after_row);
+  // The same with run.threads > 1, bit-identical: pair forces first, then every grain sums its
+  // own in the serial pass's order (see there).
+  template <class AfterRow>
+  double threaded_force_pass(AfterRow&& after_row);
+  void index_incoming_pairs();
   void rebuild();
   void remove_escaped();
   void check_finite() const;
@@ -87,6 +92,14 @@ class DemSimulator final : public Simulator<D> {
   PairList pairs_;
   std::vector<Vec<D>> shear_;          // u_t of each listed pair (frictional scenes only)
   std::vector<std::uint8_t> touching_;  // whether that pair touched at the last evaluation
+
+  // run.threads > 1 only: each listed pair's force and torque shares at the last pass, and
+  // for each grain the pairs in which it is the partner j, by increasing row.
+  int threads_ = 1;
+  std::vector<std::uint8_t> in_contact_;
+  std::vector<Vec<D>> pair_force_;
+  std::vector<Spin<D>> pair_torque_i_, pair_torque_j_;
+  std::vector<std::uint32_t> incoming_first_, incoming_;
 
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;
