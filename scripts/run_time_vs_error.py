@@ -118,9 +118,19 @@ def plan(quick):
     ref_b = dict(ed("constant", **_kw(common_b)), role="reference")
     noise_b = dict(ed("constant", run__seed=2, **_kw(common_b)), role="noise",
                    label="ED constant, seed 2")
+    # What the integrator does to one collision at the gas's e (frictionless, head-on, over the
+    # onset phases): the mean e it gives predicts the cooling rate's dt bias, (1 - e^2) per
+    # collision, before any many-body effect of a finite t_c.
+    e_gas = scene_value(hcs["scene"], "contact", "restitution")
+    pairs = sorted({(t[2] if len(t) > 2 else "ab2", t[1]) for t in hcs["soft"]})
     parts["b"] = dict(
-        title="(b) homogeneous cooling", scene=hcs["scene"],
-        settings=[ref_b, noise_b] + [soft(*t, **_kw(common_b)) for t in hcs["soft"]])
+        title="(b) homogeneous cooling", scene=hcs["scene"], restitution=e_gas,
+        settings=[ref_b, noise_b] + [soft(*t, **_kw(common_b)) for t in hcs["soft"]],
+        binary=[dict(soft(0.1, r, integ, output__interval=0, contact__restitution=e_gas,
+                          contact__friction=0,
+                          binary__gap=_fmt(gap + k / phases * r * 0.1 * speed)), phase=k,
+                     part="b", role="binary")
+                for integ, r in pairs for k in range(phases)])
     # Same target for both backends: ED cannot tether it (spec §4), so the soft runs fix it too.
     common_c = dict(jet["common"], **{"wall.kind": "fixed"}, **quiet_output)
     t_c, r = jet["reference"]
@@ -137,6 +147,13 @@ def plan(quick):
             s.setdefault("role", "test")
             s["part"] = key
     return parts
+
+
+def scene_value(scene, section, key):
+    import configparser
+    ini = configparser.ConfigParser(interpolation=None, inline_comment_prefixes=("#",))
+    ini.read(os.path.join(SCENES, scene))
+    return ini.getfloat(section, key)
 
 
 def _kw(sets):
@@ -281,6 +298,16 @@ def measure(parts, runner, only):
             for r in runs:
                 r.update(errors_b(r, rate))
             part["reference_value"] = rate
+            binary = [runner.run("binary.ini", s) for s in part["binary"]]
+            for r in binary:
+                r.update(errors_a(r))
+            e0 = part["restitution"]
+            predicted = {(row["integrator"], row["dt_over_tc"]):
+                         (1 - row["e"] ** 2) / (1 - e0 ** 2) - 1 if np.isfinite(row["err"])
+                         else math.nan for row in phase_rows(binary)}
+            for r in runs:
+                if r["backend"] == "soft_dem":
+                    r["predicted"] = predicted.get((r["integrator"], r["dt_over_tc"]), math.nan)
         else:
             ref = next(r for r in runs if r["role"] == "reference")
             if ref["exit"] != 0:
@@ -293,7 +320,8 @@ def measure(parts, runner, only):
             if "summary" in r:
                 r["summary"] = {k: v for k, v in r["summary"].items() if k != "analysis"}
         results[key] = dict(title=part["title"], scene=part["scene"], runs=runs,
-                            reference_value=part.get("reference_value"))
+                            reference_value=part.get("reference_value"),
+                            restitution=part.get("restitution"))
     return results
 
 
@@ -356,6 +384,7 @@ def granjet_version(granjet):
 # ---- Figure ----------------------------------------------------------------------------------
 COLOURS = {0.1: "tab:blue", 0.05: "tab:cyan", 0.03: "tab:green", 0.02: "tab:olive",
            0.01: "tab:orange", 0.003: "tab:red"}
+DT_MARKERS = {0.02: "o", 0.05: "s", 0.1: "^", 0.2: "v"}
 LAW_COLOURS = {"constant": "tab:purple", "velocity_dependent": "tab:brown",
                "tc_model": "tab:pink"}
 
@@ -409,8 +438,7 @@ def panel_b(ax, part):
             ax.scatter(r["wall"], r["err"], marker="x", color="k", zorder=3)
         else:
             ax.scatter(r["wall"], r["err"], color=COLOURS.get(r["t_c"], "gray"),
-                       marker={0.02: "o", 0.05: "s", 0.1: "^", 0.2: "v"}.get(r["dt_over_tc"], "D"),
-                       zorder=3)
+                       marker=DT_MARKERS.get(r["dt_over_tc"], "D"), zorder=3)
         annotate(ax, r["wall"], r["err"], short_label("b", r))
     for r in noise:
         if np.isfinite(r["err"]):
@@ -420,8 +448,11 @@ def panel_b(ax, part):
     for t_c, colour in COLOURS.items():
         if any(r.get("t_c") == t_c and r["backend"] == "soft_dem" for r in part["runs"]):
             ax.scatter([], [], color=colour, label=f"soft $t_c$ = {t_c:g}")
+    for ratio, marker in DT_MARKERS.items():
+        if any(r.get("dt_over_tc") == ratio for r in part["runs"]):
+            ax.scatter([], [], color="gray", marker=marker, label=f"$dt$ = {ratio:g} $t_c$")
     draw_front(ax, "b", part)
-    ax.set_xlabel("wall time of the run [s]  (labels: $t_c$ / $dt/t_c$)")
+    ax.set_xlabel("wall time of the run [s]  (labels: $t_c$ / $dt/t_c$, vv: verlet)")
     ax.set_ylabel("|cooling rate / ED rate - 1|")
 
 
@@ -516,7 +547,8 @@ def table_a(part):
 
 def table_b(part):
     rows = ["| setting | backend | t_c | dt/t_c | wall [s] | CPU [s] | cooling rate | "
-            "rate / ED - 1 | Pareto |", "|---|---|---|---|---|---|---|---|---|"]
+            "rate / ED - 1 | binary's (1-e^2) bias | Pareto |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
     for r in part["runs"]:
         tag = " **reference**" if r["role"] == "reference" else \
             " (statistical spread)" if r["role"] == "noise" else ""
@@ -527,7 +559,9 @@ def table_b(part):
         rows.append(f"| {r['label']}{tag}{status_text(r)} | {r['backend']} | "
                     f"{r['t_c'] if soft_run else '-'} | {r['dt_over_tc'] if soft_run else '-'} | "
                     f"{secs(r['wall'])} | {secs(r['cpu'])} | {rate} | {signed} | "
-                    f"{'*' if r.get('pareto') else ''} |")
+                    + (f"{100 * r['predicted']:+.2f}%" if np.isfinite(r.get("predicted", math.nan))
+                       else "-")
+                    + f" | {'*' if r.get('pareto') else ''} |")
     return "\n".join(rows)
 
 
@@ -574,6 +608,127 @@ def largest_ratio(runs, limit, field="err"):
     return best
 
 
+def span(values, fmt="{:+.1f}%"):
+    """'a' or 'a to b' of percentages."""
+    v = sorted(100 * x for x in values if np.isfinite(x))
+    if not v:
+        return "-"
+    return fmt.format(v[0]) if len(v) == 1 or abs(v[-1] - v[0]) < 0.05 else \
+        f"{fmt.format(v[0])} to {fmt.format(v[-1])}"
+
+
+def lesson_b(part):
+    ref = next(r for r in part["runs"] if r["role"] == "reference")
+    noise = next((r for r in part["runs"] if r["role"] == "noise"), None)
+    soft_runs = [r for r in part["runs"] if r["backend"] == "soft_dem" and np.isfinite(r["err"])]
+    if not soft_runs:
+        return f"**Homogeneous cooling:** no soft run finished."
+    ab2 = [r for r in soft_runs if r["integrator"] == "ab2"]
+    fine = sorted((r for r in ab2 if r["dt_over_tc"] <= 0.02 + 1e-12), key=lambda r: -r["t_c"])
+    ratios = sorted({r["dt_over_tc"] for r in soft_runs if r["dt_over_tc"] >= 0.1 - 1e-12})
+    within = [r for r in soft_runs if r["err"] < 0.01]
+    cheap = min(within, key=lambda r: r["wall"]) if within else None
+    text = (f"**Homogeneous cooling (dilute gas):** the event-driven backend gives the exact "
+            f"hard-sphere rate fastest, in {secs(ref['wall'])} s"
+            + (f" (an independent start moves it by {pct(noise['err'])})" if noise else "")
+            + ". Soft grains miss it two ways. Softness: at dt = 0.02 t_c the rate is off by "
+            + ", ".join(f"{100 * r['signed']:+.1f}% at t_c = {r['t_c']:g}" for r in fine)
+            + ". Step: at coarse steps the integrator's restitution, averaged over where a "
+              "contact starts within a step, is off, and the dissipation 1 - e^2 with it, "
+              "whatever t_c (")
+    text += "; ".join(
+        f"dt = {k:g} t_c: " + ", ".join(
+            f"{integ} {span([r['signed'] for r in soft_runs if r['dt_over_tc'] == k and r['integrator'] == integ])}"
+            + (f" (binary collision predicts {100 * pred:+.0f}%)" if np.isfinite(pred) else "")
+            for integ in ("ab2", "verlet")
+            if any(r["dt_over_tc"] == k and r["integrator"] == integ for r in soft_runs)
+            for pred in [next(r.get("predicted", math.nan) for r in soft_runs
+                              if r["dt_over_tc"] == k and r["integrator"] == integ)])
+        for k in ratios)
+    coarse_sign = {i: [np.sign(r["signed"]) for r in soft_runs if r["integrator"] == i and
+                       r["dt_over_tc"] >= 0.1 - 1e-12] for i in ("ab2", "verlet")}
+    if coarse_sign["ab2"] and coarse_sign["verlet"] and all(x < 0 for x in coarse_sign["ab2"]) \
+            and all(x > 0 for x in coarse_sign["verlet"]):
+        text += "): ab2 errs towards too little cooling, verlet towards too much. "
+    else:
+        text += "). "
+    if cheap:
+        text += (f"The cheapest soft run within 1% is {cheap['label']} ({pct(cheap['err'])}, "
+                 f"{secs(cheap['wall'])} s, {cheap['wall'] / ref['wall']:.0f} times the "
+                 f"event-driven time). For a dilute gas, use the event-driven backend; a soft "
+                 f"run there needs t_c and dt both small.")
+    return text
+
+
+def lessons_c(part):
+    out = []
+    ref = next(r for r in part["runs"] if r["role"] == "reference")
+    noise = next(r for r in part["runs"] if r["role"] == "noise")
+    tests = [r for r in part["runs"] if r["role"] == "test"]
+    same_tc = [r for r in tests if r["backend"] == "soft_dem" and r["t_c"] == ref["t_c"]]
+    done = [r for r in same_tc if np.isfinite(r["err"])]
+    blown = [r for r in tests if r["exit"] != 0]
+    study = next((r for r in done if r["dt_over_tc"] == 0.02 and r["integrator"] == "ab2"), None)
+    if done:
+        cheapest = min(done, key=lambda r: r["wall"])
+        out.append(
+            f"**jet2d profiles (dense flow):** one run's time-averaged profile carries a "
+            f"statistical error: an independent start (seed 2) differs by {pct(noise['err_P'])} "
+            f"in P and {pct(noise['err_T'])} in T_g bin by bin, though its overall level only by "
+            f"{100 * noise['bias_P']:+.1f}% and {100 * noise['bias_T']:+.1f}%. At the study's "
+            f"t_c = {ref['t_c']:g}, every dt from {min(r['dt_over_tc'] for r in done):g} to "
+            f"{max(r['dt_over_tc'] for r in done):g} t_c (both integrators) differs from the "
+            f"reference by as much and no more: P {span([r['err_P'] for r in done], '{:.1f}%')}"
+            f" (level {span([r['bias_P'] for r in done])}), T_g "
+            f"{span([r['err_T'] for r in done], '{:.0f}%')} (level "
+            f"{span([r['bias_T'] for r in done])}). The profiles cannot tell these steps apart, "
+            f"so the cheapest ({cheapest['label']}, {secs(cheapest['wall'])} s) gives what the "
+            f"study's dt = 0.02 t_c"
+            + (f" ({secs(study['wall'])} s)" if study else "")
+            + " gives"
+            + (", while " + "; ".join(f"{r['label']} ended in a {status_text(r).strip(' ()')}"
+                                      for r in blown) if blown else "")
+            + ". A smaller dt buys nothing visible here: to sharpen a profile, average longer or "
+              "over seeds (`--seeds`); keep dt <= 0.05 t_c where the dissipation itself is the "
+              "answer, as in (b).")
+    stiff = sorted((r for r in tests if r["backend"] == "soft_dem" and r["t_c"] != ref["t_c"]
+                    and np.isfinite(r["err"])), key=lambda r: -r["t_c"])
+    hard = [r for r in tests if r["backend"] == "event_driven"]
+    if stiff or hard:
+        by_tc = {}
+        for r in stiff:
+            by_tc.setdefault(r["t_c"], []).append(r["bias_T"])
+        hard_done = [r for r in hard if np.isfinite(r["err"])]
+        text = ("The model, not the step, moves the profiles, and mostly the level of T_g: "
+                + ("stiffer grains run colder (T_g level "
+                   + ", ".join(f"{span(v)} at t_c = {t:g}" for t, v in by_tc.items()) + ")"
+                   if stiff else ""))
+        if hard_done:
+            text += ("; " if stiff else "") + "hard spheres: " + ", ".join(
+                f"{r['law']} T_g level {100 * r['bias_T']:+.0f}%, P level "
+                f"{100 * r['bias_P']:+.1f}%, {secs(r['wall'])} s" for r in hard_done)
+        text += (". P stays within a few per cent for every model. So the soft model walks "
+                 "towards the hard-core answer as t_c shrinks, at a cost growing as 1/t_c "
+                 "(P and T_g error of each run in the table).")
+        vd = next((r for r in hard_done if r["law"] == "velocity_dependent"), None)
+        stiffest = stiff[-1] if stiff else None
+        if vd and stiffest:
+            text += (f" For the hard-core question (spec HC) the event-driven backend answers "
+                     f"in {secs(vd['wall'])} s where soft DEM at t_c = {stiffest['t_c']:g} takes "
+                     f"{secs(stiffest['wall'])} s and is still {100 * (stiffest['bias_T'] - vd['bias_T']):.0f} "
+                     f"points of T_g short of it; to reproduce the study, it is soft DEM at the "
+                     f"study's t_c, because the two models' T_g differ by "
+                     f"{abs(100 * vd['bias_T']):.0f}%.")
+        tc = next((r for r in hard_done if r["law"] == "tc_model"), None)
+        if tc:
+            text += (f" The tc_model law (ed.tc = 0.1) is fastest ({secs(tc['wall'])} s) but "
+                     f"not the same physics: a collision is elastic whenever either grain "
+                     f"collided less than ed.tc ago, which in the dense zone switches off much of "
+                     f"the dissipation (T_g {100 * tc['bias_T']:+.0f}%).")
+        out.append(text)
+    return out
+
+
 def lessons(results):
     """The 'what this teaches' bullets, each computed from the numbers of this run."""
     out = []
@@ -599,98 +754,19 @@ def lessons(results):
                        f"{study['ab2']['err_tc'] / study['verlet']['err_tc']:.0f} times closer "
                        f"than ab2's ({pct(study['verlet']['err_tc'])} against "
                        f"{pct(study['ab2']['err_tc'])}), e equally good.")
+        gain = [r for r in runs if np.isfinite(r["err"]) and r["e_max"] > 1]
+        if gain:
+            worst = max(gain, key=lambda r: r["e_max"])
+            text.append(f"{worst['integrator']} at dt = {worst['dt_over_tc']:g} t_c even gains "
+                        f"energy in a collision (e up to {worst['e_max']:.2f})")
         out.append("**Binary collision (soft DEM's accuracy per step):** " + "; ".join(text)
                    + f". The study's dt = 0.02 t_c is {min(one.values()) / 0.02:.1f} times finer "
                      "than 1% accuracy needs, and a soft run's cost is proportional to t_c/dt."
                    + tc_note)
     if "b" in results:
-        part = results["b"]
-        ref = next(r for r in part["runs"] if r["role"] == "reference")
-        noise = next((r for r in part["runs"] if r["role"] == "noise"), None)
-        soft_runs = [r for r in part["runs"] if r["backend"] == "soft_dem" and
-                     np.isfinite(r["err"])]
-        if soft_runs:
-            fine = sorted((r for r in soft_runs if r["dt_over_tc"] <= 0.02 + 1e-12 and
-                           r["integrator"] == "ab2"), key=lambda r: -r["t_c"])
-            coarse = [r for r in soft_runs if r["dt_over_tc"] >= 0.1 - 1e-12 and
-                      r["integrator"] == "ab2"]
-            verlet = [r for r in soft_runs if r["integrator"] == "verlet"]
-            best = min(soft_runs, key=lambda r: r["err"])
-            by_ratio = {}
-            for r in coarse:
-                by_ratio.setdefault(r["dt_over_tc"], []).append(100 * r["signed"])
-            out.append(
-                f"**Homogeneous cooling (dilute gas):** the event-driven backend is exact and the "
-                f"fastest: {secs(ref['wall'])} s"
-                + (f" (an independent start moves the rate by {pct(noise['err'])})" if noise
-                   else "")
-                + (". Soft grains (ab2) at dt = 0.02 t_c cool slower the softer they are ("
-                   + ", ".join(f"t_c = {r['t_c']:g}: {100 * r['signed']:+.1f}%" for r in fine)
-                   + ")" if fine else "")
-                + "; a coarse step biases every t_c the same way ("
-                + ", ".join(f"dt = {k:g} t_c: " + (f"{min(v):+.0f}% to {max(v):+.0f}%"
-                                                   if len(v) > 1 else f"{v[0]:+.0f}%")
-                            for k, v in sorted(by_ratio.items()))
-                + "), because ab2's restitution, averaged over onset phases, is too high at "
-                  "coarse steps (part (a))"
-                + (" and verlet's too low (" + ", ".join(
-                    f"t_c = {r['t_c']:g}, dt = {r['dt_over_tc']:g} t_c: "
-                    f"{100 * r['signed']:+.1f}%" for r in verlet) + ")" if verlet else "")
-                + ". The best soft run ("
-                + f"{best['label']}) is {pct(best['err'])} off after {secs(best['wall'])} s, "
-                  f"{best['wall'] / ref['wall']:.0f} times the event-driven time.")
+        out.append(lesson_b(results["b"]))
     if "c" in results:
-        part = results["c"]
-        ref = next(r for r in part["runs"] if r["role"] == "reference")
-        noise = next(r for r in part["runs"] if r["role"] == "noise")
-        same_tc = [r for r in part["runs"] if r["role"] == "test" and
-                   r["backend"] == "soft_dem" and r["t_c"] == ref["t_c"]]
-        done = [r for r in same_tc if np.isfinite(r["err"])]
-        blown = [r for r in part["runs"] if r["exit"] != 0]
-        study = next((r for r in done if r["dt_over_tc"] == 0.02 and
-                      r["integrator"] == "ab2"), None)
-        if done:
-            top_p = max(r["err_P"] for r in done)
-            top_t = max(r["err_T"] for r in done)
-            cheapest = min(done, key=lambda r: r["wall"])
-            out.append(
-                f"**jet2d profiles (dense flow):** one run's time-averaged profiles carry a "
-                f"statistical error: an independent start differs by {pct(noise['err_P'])} in "
-                f"P and {pct(noise['err_T'])} in T_g, and the same start run at another dt "
-                f"differs as much (the flow is chaotic). At the study's t_c = {ref['t_c']:g} "
-                f"every dt from {min(r['dt_over_tc'] for r in done):g} to "
-                f"{max(r['dt_over_tc'] for r in done):g} t_c stays within P {pct(top_p)} and "
-                f"T_g {pct(top_t)} of the reference, so the profiles cannot tell these steps "
-                f"apart: the cheapest ({cheapest['label']}, {secs(cheapest['wall'])} s) gives "
-                f"the same profiles as the study's dt = 0.02 t_c"
-                + (f" ({secs(study['wall'])} s)" if study else "")
-                + " within that spread"
-                + (", while " + "; ".join(f"{r['label']} {status_text(r).strip(' ()')}"
-                                          for r in blown) if blown else "")
-                + ". What a smaller dt buys is hidden by the spread: to sharpen a profile, "
-                  "average longer or over seeds (`--seeds`); keep dt small where the "
-                  "dissipation itself is the answer, as in (b).")
-        stiff = [r for r in part["runs"] if r["role"] == "test" and np.isfinite(r["err"]) and
-                 r["backend"] == "soft_dem" and r["t_c"] != ref["t_c"]]
-        hard = [r for r in part["runs"] if r["role"] == "test" and r["backend"] == "event_driven"]
-
-        def listing(rs):
-            return "; ".join(
-                f"{r['label']}: P {shifted(r['err_P'], r.get('bias_P'))}, T_g "
-                f"{shifted(r['err_T'], r.get('bias_T'))}, {secs(r['wall'])} s"
-                if np.isfinite(r["err"]) else f"{r['label']}: {status_text(r).strip(' ()')}"
-                for r in sorted(rs, key=lambda r: r["wall"]))
-        if stiff or hard:
-            out.append(
-                "Changing the model rather than the step shows beyond that spread, mostly in "
-                "T_g (error, and in brackets the overall shift of the profile): "
-                + (f"stiffer soft grains, {listing(stiff)}" if stiff else "")
-                + ("; " if stiff and hard else "")
-                + (f"hard spheres, {listing(hard)}" if hard else "")
-                + ". Stiffer soft grains cost in proportion to 1/t_c. The event-driven backend "
-                  "is the hard-core limit with its own restitution law, not a faster route to "
-                  "the soft model's answer: use it for the hard-core question (spec HC), and "
-                  "the soft backend at the study's t_c to reproduce the study.")
+        out += lessons_c(results["c"])
     return out
 
 
@@ -758,7 +834,11 @@ def document(results, meta, path, png):
               "against the event-driven rate from the same start (seed 1), the exact hard-sphere "
               "result, i.e. the t_c -> 0 limit of the soft model. The soft runs share the start "
               "too, so their difference from the reference is mostly systematic; the seed-2 row "
-              "shows how far an independent start moves the rate.", "",
+              "shows how far an independent start moves the rate. Last column: the same "
+              "integrator and dt/t_c on one frictionless head-on collision at the gas's e = "
+              f"{part.get('restitution') or 0:g}, averaged over the contact onset phases as in "
+              "(a); (1 - e^2)/(1 - e0^2) - 1 is the bias that alone puts on the cooling rate "
+              "(it leaves out what a finite t_c does in a gas).", "",
             table_b(part), "",
             f"Pareto front: {front_text('b', part)}."]
     if "c" in results:
