@@ -45,42 +45,65 @@ inline void merge_late_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>
 
 // `positions` must already be in grid order (cell c holds indices start(c)..start(c+1)-1).
 // `excluded(i, j)` drops pairs that never interact (e.g. two wall grains); `space` gives the
-// separation (plain or minimum image).
+// separation (plain or minimum image). With `threads` > 1 contiguous runs of cells are scanned
+// in parallel and joined in order: the same list as one thread, entry for entry.
 template <int D, class Excluded, class Space = OpenSpace<D>>
 void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions,
                       std::span<const double> radius, double skin, Excluded&& excluded,
-                      PairList& out, const Space& space = {}) {
+                      PairList& out, const Space& space = {}, int threads = 1) {
+  using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const std::size_t n = positions.size();
   out.first.assign(n + 1, 0);
-  out.partner.clear();
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> late;  // (row, partner), row closed
-  auto consider = [&](std::uint32_t i, std::uint32_t j) {
-    const double cut = radius[i] + radius[j] + skin;
-    if (space.separation(positions[i], positions[j]).squaredNorm() >= cut * cut || excluded(i, j))
-      return;
-    if (j > i)
-      out.partner.push_back(j);
-    else
-      late.emplace_back(j, i);
-  };
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;  // the forward cells' grains
-  for (std::size_t c = 0; c < grid.cells(); ++c) {
-    const std::uint32_t begin = grid.start(c), end = grid.start(c + 1);
-    if (begin == end) continue;
-    ranges.clear();
-    grid.for_each_forward_neighbour(c, [&](std::size_t other) {
-      if (grid.start(other) != grid.start(other + 1))
-        ranges.emplace_back(grid.start(other), grid.start(other + 1));
-    });
-    for (std::uint32_t i = begin; i < end; ++i) {
-      for (std::uint32_t j = i + 1; j < end; ++j) consider(i, j);
-      // In open space forward cells come later in memory, so j > i here too.
-      for (const auto& [first, last] : ranges)
-        for (std::uint32_t j = first; j < last; ++j) consider(i, j);
-      out.first[i + 1] = static_cast<std::uint32_t>(out.partner.size());
+  // Chunk t holds cells [cell_begin[t], cell_begin[t+1]), about n / threads grains each.
+  std::vector<std::size_t> cell_begin(threads + 1, grid.cells());
+  std::size_t c = 0;
+  for (int t = 0; t < threads; ++t) {
+    while (c < grid.cells() && std::size_t{grid.start(c)} * threads < t * n) ++c;
+    cell_begin[t] = c;
+  }
+  std::vector<std::vector<std::uint32_t>> partners(threads);
+  std::vector<Pairs> late(threads);  // (row, partner) found after the row was closed
+#pragma omp parallel for num_threads(threads) schedule(static, 1) if (threads > 1)
+  for (int t = 0; t < threads; ++t) {
+    std::vector<std::uint32_t>& partner = partners[t];
+    Pairs ranges;  // the forward cells' grains
+    auto consider = [&](std::uint32_t i, std::uint32_t j) {
+      const double cut = radius[i] + radius[j] + skin;
+      if (space.separation(positions[i], positions[j]).squaredNorm() >= cut * cut ||
+          excluded(i, j))
+        return;
+      if (j > i)
+        partner.push_back(j);
+      else
+        late[t].emplace_back(j, i);
+    };
+    for (std::size_t c = cell_begin[t]; c < cell_begin[t + 1]; ++c) {
+      const std::uint32_t begin = grid.start(c), end = grid.start(c + 1);
+      if (begin == end) continue;
+      ranges.clear();
+      grid.for_each_forward_neighbour(c, [&](std::size_t other) {
+        if (grid.start(other) != grid.start(other + 1))
+          ranges.emplace_back(grid.start(other), grid.start(other + 1));
+      });
+      for (std::uint32_t i = begin; i < end; ++i) {
+        for (std::uint32_t j = i + 1; j < end; ++j) consider(i, j);
+        // In open space forward cells come later in memory, so j > i here too.
+        for (const auto& [first, last] : ranges)
+          for (std::uint32_t j = first; j < last; ++j) consider(i, j);
+        out.first[i + 1] = static_cast<std::uint32_t>(partner.size());  // within the chunk
+      }
     }
   }
-  detail::merge_late_pairs(late, out);
+  out.partner.clear();
+  Pairs all_late;
+  for (int t = 0; t < threads; ++t) {
+    const auto base = static_cast<std::uint32_t>(out.partner.size());
+    for (std::size_t i = grid.start(cell_begin[t]); i < grid.start(cell_begin[t + 1]); ++i)
+      out.first[i + 1] += base;
+    out.partner.insert(out.partner.end(), partners[t].begin(), partners[t].end());
+    all_late.insert(all_late.end(), late[t].begin(), late[t].end());
+  }
+  detail::merge_late_pairs(all_late, out);
 }
 
 }  // namespace granjet

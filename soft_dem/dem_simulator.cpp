@@ -450,7 +450,7 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
                       [&](std::uint32_t i, std::uint32_t j) {
                         return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
                       },
-                      pairs_, space_);
+                      pairs_, space_, threads_);
   if constexpr (kFriction) {
     shear_.assign(pairs_.size(), Vec<D>::Zero());
     touching_.assign(pairs_.size(), 0);

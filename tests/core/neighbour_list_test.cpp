@@ -99,5 +99,37 @@ TEST(PeriodicBox, MinimumImageAndWrap) {
   EXPECT_LT(tiny[0], 10.0);
 }
 
+// Scanning runs of cells on several threads and joining them gives the one-thread list entry for
+// entry (open space, and periodic with its late pairs).
+TYPED_TEST(NeighbourList, ThreadedBuildEqualsSerialBuild) {
+  constexpr int D = TypeParam::kDim;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 9.0);
+  std::vector<Vec<D>> x(D == 2 ? 150 : 500);
+  for (Vec<D>& xi : x)
+    for (int d = 0; d < D; ++d) xi[d] = u(rng);
+  const std::vector<double> radius(x.size(), 0.5);
+  const PeriodicBox<D> space(Vec<D>::Constant(9.0));
+  const auto none = [](auto, auto) { return false; };
+  for (bool periodic : {false, true}) {
+    CellGrid<D> grid;
+    if (periodic) grid.build_periodic(x, space.box, 1.3);
+    else grid.build(x, 1.3);
+    std::vector<Vec<D>> sorted;
+    for (std::uint32_t k : grid.order()) sorted.push_back(x[k]);
+    PairList one, three;
+    if (periodic) {
+      build_half_pairs<D>(grid, sorted, radius, 0.3, none, one, space, 1);
+      build_half_pairs<D>(grid, sorted, radius, 0.3, none, three, space, 3);
+    } else {
+      build_half_pairs<D>(grid, sorted, radius, 0.3, none, one, OpenSpace<D>{}, 1);
+      build_half_pairs<D>(grid, sorted, radius, 0.3, none, three, OpenSpace<D>{}, 3);
+    }
+    EXPECT_GT(one.size(), 100u);
+    EXPECT_EQ(one.first, three.first) << "periodic " << periodic;
+    EXPECT_EQ(one.partner, three.partner) << "periodic " << periodic;
+  }
+}
+
 }  // namespace
 }  // namespace granjet
