@@ -63,7 +63,7 @@ def soft(t_c, ratio, integrator="ab2", **sets):
     """Soft DEM at contact time t_c and dt = ratio * t_c."""
     label = f"soft t_c={t_c:g} dt={ratio:g}t_c" + ("" if integrator == "ab2" else f" {integrator}")
     s = setting(label, contact__contact_time=t_c, run__dt=_fmt(ratio * t_c),
-                run__integrator=integrator, **sets)
+                run__integrator=integrator, run__threads=1, **sets)  # one core, as ED
     s.update(t_c=t_c, dt_over_tc=ratio, integrator=integrator)
     return s
 
@@ -788,7 +788,7 @@ def document(results, meta, path, png):
         f"- {m['cpu']}, {m['cpus']} CPUs"
         + (f" ({m['hypervisor']} virtual machine)" if m.get("hypervisor") else "")
         + f", {m['uname']}",
-        f"- every run single-threaded, one after the other; wall time = time.perf_counter "
+        f"- every run on one core (soft DEM with `run.threads = 1`), one after the other; wall time = time.perf_counter "
         f"around the `granjet run` process (start-up, set-up, inline analysis and HDF5 output "
         f"included), CPU = the child's user + system time. "
         + ("The machine was shared with other developers' builds and runs (load average "
@@ -845,7 +845,7 @@ def document(results, meta, path, png):
         part = results["c"]
         ref = next(r for r in part["runs"] if r["role"] == "reference")
         common = {k: v for k, v in ref["sets"].items()
-                  if k not in ("contact.contact_time", "run.dt", "run.integrator")}
+                  if k not in ("contact.contact_time", "run.dt", "run.integrator", "run.threads")}
         lines += [
             "", "## (c) jet2d: P and T_g profiles against a converged reference", "",
             f"scenes/jet2d.ini (8,000 bidisperse frictionless disks, e = 0.75, t_end = 300, "
