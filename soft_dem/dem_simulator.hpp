@@ -55,6 +55,7 @@ class DemSimulator final : public Simulator<D> {
   void rebuild();
   void remove_escaped();
   void check_finite() const;
+  void check_energy() const;
   std::size_t index_of(GrainId id) const { return index_of_id_[id]; }
   // Grain i's radius; one constant when all grains have the size of the first.
   double radius_of(std::span<const double> radius, std::size_t i) const {
