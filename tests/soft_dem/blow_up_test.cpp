@@ -91,16 +91,17 @@ TEST(BlowUp, EnergyCreatedByTooLongAStepIsReported) {
           try {
             sim.advance_to(1.0);
           } catch (const BlowUpError& e) {
-            EXPECT_NE(std::string(e.what()).find("energy rose"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("kinetic energy rose"), std::string::npos) << e.what();
             throw;
           }
         },
         BlowUpError);
-    // At the study's dt the same collision finishes quietly.
-    scene.run.dt = 0.0;
-    dem::DemSimulator<3, false> fine(scene, p);
-    EXPECT_NO_THROW(fine.advance_to(1.0));
-    EXPECT_LT(fine.energy().kinetic, 0.5);
+    // At dt = 0.1 t_c the same collision finishes quietly (e = 0.736), even looked at every
+    // step: a contact that starts inside a step stores energy it never had, but not as motion.
+    scene.run.dt = 0.1 * scene.contact.contact_time;
+    dem::DemSimulator<3, false> coarse(scene, p);
+    for (int k = 1; k <= 100; ++k) EXPECT_NO_THROW(coarse.advance_to(k * scene.dt()));
+    EXPECT_LT(coarse.energy().kinetic, 0.5);
   }
 }
 
