@@ -249,23 +249,25 @@ class CellList {
     }
     out.size = 0;
     std::uint8_t m = 0;
-    Vec<D> shift = Vec<D>::Zero();
-    walk<D - 1, kCount>(s, 0, shift, out, m);
+    std::array<int, D> pick{};
+    walk<D - 1, kCount>(s, 0, pick, out, m);
   }
 
-  // Visits the cells of the stencil, the m-th with image m.
+  // Visits the cells of the stencil, the m-th with image m; pick[a] is the stencil entry taken
+  // on axis a. (The image shift is written a component at a time: building it in a stack
+  // vector a component at a time and storing it whole stalls on store forwarding.)
   template <int A, int kCount>
-  void walk(const Stencil& s, std::int64_t base, Vec<D>& shift, Neighbourhood& out,
+  void walk(const Stencil& s, std::int64_t base, std::array<int, D>& pick, Neighbourhood& out,
             std::uint8_t& m) const {
     const int count = kCount > 0 ? kCount : s.count[A];
     for (int o = 0; o < count; ++o) {
-      shift[A] = s.shift[A][o];
+      pick[A] = o;
       const std::int64_t cell = base * n_[A] + s.index[A][o];
       if constexpr (A == 0) {
-        out.shift[m] = shift;
+        for (int a = 0; a < D; ++a) out.shift[m][a] = s.shift[a][pick[a]];
         gather_cell(cell < 0 ? outside_cell_ : static_cast<std::size_t>(cell), m++, out);
       } else {
-        walk<A - 1, kCount>(s, cell, shift, out, m);
+        walk<A - 1, kCount>(s, cell, pick, out, m);
       }
     }
   }

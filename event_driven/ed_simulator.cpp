@@ -226,14 +226,13 @@ void EdSimulator<D>::remove(std::uint32_t i) {
 template <int D>
 void EdSimulator<D>::predict_all(std::uint32_t i) {
   cells_.gather(i, hood_);
-  next_collision_[i] = runner_up_[i] = Prediction{};
-  merge_hood(i);
+  merge_hood(i, Prediction{}, Prediction{});
 }
 
 template <int D>
 void EdSimulator<D>::predict_new_layer(std::uint32_t i, const Crossing& moved) {
   cells_.gather_new_layer(i, moved.axis, moved.direction, hood_);
-  merge_hood(i);
+  merge_hood(i, next_collision_[i], runner_up_[i]);
 }
 
 // Three passes over the gathered grains: b = dr.dv, c = dr^2 - sigma^2, a = dv^2 of each pair;
@@ -241,7 +240,7 @@ void EdSimulator<D>::predict_new_layer(std::uint32_t i, const Crossing& moved) {
 // the earliest two, whose branch is rarely taken. (Members are copied to locals: the compiler
 // must see that the arrays written cannot change them.)
 template <int D>
-void EdSimulator<D>::merge_hood(std::uint32_t i) {
+void EdSimulator<D>::merge_hood(std::uint32_t i, Prediction best, Prediction second) {
   const std::size_t n = hood_.size;
   if (pair_b_.size() < n) {
     pair_b_.resize(hood_.grain.size());
@@ -267,7 +266,6 @@ void EdSimulator<D>::merge_hood(std::uint32_t i) {
     pa[m] = q.a;
   }
   for (std::size_t m = 0; m < n; ++m) pb[m] = contact_delay(pb[m], pc[m], pa[m]);
-  Prediction best = next_collision_[i], second = runner_up_[i];
   for (std::size_t m = 0; m < n; ++m) {
     const double when = now + pb[m];
     // An unknown runner-up (kUnknown) stays unknown unless a new earliest displaces the old.

@@ -74,8 +74,10 @@ class EdSimulator final : public Simulator<D> {
   // Scans every grain in reach of i (kAll) or only those of the layer i's last move brought in.
   void predict_all(std::uint32_t i);
   void predict_new_layer(std::uint32_t i, const Crossing& moved);
-  // Merges the collisions with the grains gathered in hood_ into i's earliest and runner-up.
-  void merge_hood(std::uint32_t i);
+  // Merges the collisions with the grains gathered in hood_ into i's earliest and runner-up,
+  // starting from `best` and `second` (taken by value: a fresh scan's empty predictions then
+  // never pass through memory).
+  void merge_hood(std::uint32_t i, Prediction best, Prediction second);
   bool echo(std::uint32_t i, std::uint32_t k, const Vec<D>& dr) const;
   void predict_exit(std::uint32_t i);
   void schedule(std::uint32_t i);
