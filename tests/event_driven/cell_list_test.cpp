@@ -112,6 +112,42 @@ TYPED_TEST(CellListReach, AfterAMoveTheNewLayerIsExactlyWhatCameIntoReach) {
   }
 }
 
+// A crowded cell (the outermost cell of an open grid, where far grains gather): every grain is
+// gathered once however many share the cell, also after removals from the middle of its list and
+// moves out and back in.
+TEST(CellList, CrowdedCellsGatherEveryGrainOnce) {
+  constexpr std::uint32_t kGrains = 40;
+  auto cells = CellList<3>::open(Vec<3>::Zero(), Vec<3>::Constant(3.3), 1.0, kGrains);
+  const Vec<3> corner = Vec<3>::Constant(50.0);  // beyond the box: all in the last cell
+  for (std::uint32_t i = 0; i < kGrains; ++i) cells.insert(i, corner);
+  std::set<std::uint32_t> present;
+  for (std::uint32_t i = 0; i < kGrains; ++i) present.insert(i);
+  const auto gathered = [&] {
+    CellList<3>::Neighbourhood hood;
+    cells.gather(*present.begin(), hood);
+    std::multiset<std::uint32_t> got(hood.grain.begin(), hood.grain.begin() + hood.size);
+    return got;
+  };
+  EXPECT_EQ(gathered(), std::multiset<std::uint32_t>(present.begin(), present.end()));
+  for (std::uint32_t i : {3u, 0u, 39u, 20u, 8u, 9u, 10u}) {
+    cells.remove(i);
+    present.erase(i);
+    EXPECT_EQ(gathered(), std::multiset<std::uint32_t>(present.begin(), present.end()));
+  }
+  for (std::uint32_t i = 21; i < 35; ++i) {  // two cells away, out of reach, and back
+    cells.move(i, 0, -1);
+    cells.move(i, 0, -1);
+    present.erase(i);
+    EXPECT_EQ(gathered(), std::multiset<std::uint32_t>(present.begin(), present.end()));
+  }
+  for (std::uint32_t i = 21; i < 35; ++i) {
+    cells.move(i, 0, 1);
+    cells.move(i, 0, 1);
+    present.insert(i);
+  }
+  EXPECT_EQ(gathered(), std::multiset<std::uint32_t>(present.begin(), present.end()));
+}
+
 TEST(CellList, FacesHaveHysteresisAndThePeriodicBoxWraps) {
   // 4 cells of 1.125 for diameter 1: hysteresis (1.125 - 1)/2 = 0.0625 beyond each face.
   auto cells = CellList<2>::periodic(Vec<2>(4.5, 4.5), 1.0, 1);
