@@ -347,7 +347,7 @@ def cost_of(key, r):
 
 def mark_pareto(results):
     for key, part in results.items():
-        runs = [r for r in tests_of(part) if r["role"] == "test"]
+        runs = [r for r in tests_of(part) if r["role"] == "test" and not r.get("failed")]
         front = pareto([(cost_of(key, r), r["err"]) for r in runs])
         for r in part["runs"]:
             r["pareto"] = False
@@ -775,6 +775,10 @@ def lessons(results):
                        f"{study['ab2']['err_tc'] / study['verlet']['err_tc']:.0f} times closer "
                        f"than ab2's ({pct(study['verlet']['err_tc'])} against "
                        f"{pct(study['ab2']['err_tc'])}), e equally good.")
+        for r in runs:
+            if r.get("failed"):
+                text.append(f"{r['integrator']} at dt = {r['dt_over_tc']:g} t_c stops as a "
+                            f"blow-up at {r['failed']} of {r['phase_count']} onset phases")
         gain = [r for r in runs if np.isfinite(r["err"]) and r["e_max"] > 1]
         if gain:
             worst = max(gain, key=lambda r: r["e_max"])
