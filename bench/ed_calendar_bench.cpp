@@ -1,6 +1,6 @@
 // The event calendar under an event-driven workload (Google Benchmark): N = 10,976 grains; each
 // "collision" reschedules the grain on top and a random partner to exponentially distributed
-// later times, as a collision does. Chooses the heap of ed::Calendar
+// later times, as a collision does. Chooses the heap and the group size of ed::Calendar
 // (event_driven/event_calendar.hpp).
 #include <benchmark/benchmark.h>
 
@@ -16,12 +16,12 @@ using granjet::ed::CalendarEntry;
 using FibonacciHeap =
     boost::heap::fibonacci_heap<CalendarEntry, boost::heap::compare<granjet::ed::Later>>;
 
-template <class Heap>
+template <class Calendar>
 void BM_Calendar(benchmark::State& state) {
   constexpr std::uint32_t kGrains = 10976;
   granjet::Random rng(7);
   const auto later = [&](double now) { return now - std::log(1.0 - rng.uniform()); };
-  granjet::ed::EventCalendar<Heap> calendar(kGrains);
+  Calendar calendar(kGrains);
   for (std::uint32_t g = 0; g < kGrains; ++g) calendar.schedule(g, later(0.0));
   for (auto _ : state) {
     const CalendarEntry top = calendar.top();
@@ -33,8 +33,17 @@ void BM_Calendar(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Calendar<granjet::ed::DaryHeap<2>>);
-BENCHMARK(BM_Calendar<granjet::ed::DaryHeap<4>>);
-BENCHMARK(BM_Calendar<granjet::ed::DaryHeap<8>>);
-BENCHMARK(BM_Calendar<granjet::ed::PairingHeap>);
-BENCHMARK(BM_Calendar<FibonacciHeap>);
+using granjet::ed::DaryHeap;
+using granjet::ed::EventCalendar;
+// One entry per grain, by heap.
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<2>, 1>>);
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<4>, 1>>);
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<8>, 1>>);
+BENCHMARK(BM_Calendar<EventCalendar<granjet::ed::PairingHeap, 1>>);
+BENCHMARK(BM_Calendar<EventCalendar<FibonacciHeap, 1>>);
+// One entry per group of grains, by group size and arity.
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<4>, 8>>);
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<4>, 16>>);
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<4>, 32>>);
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<2>, 16>>);
+BENCHMARK(BM_Calendar<EventCalendar<DaryHeap<8>, 16>>);

@@ -13,13 +13,18 @@ template <int D>
 void run(benchmark::State& state, const granjet::Scene& scene, double warm_up, double chunk) {
   auto sim = granjet::ed::make_ed_simulator<D>(scene);
   sim->advance_to(warm_up);
-  const std::int64_t before = sim->stats().collisions;
+  const granjet::SimStats before = sim->stats();
   for (auto _ : state) {
     sim->advance_to(sim->time() + chunk);
     benchmark::DoNotOptimize(sim->stats());
   }
-  state.counters["collisions/s"] = benchmark::Counter(
-      static_cast<double>(sim->stats().collisions - before), benchmark::Counter::kIsRate);
+  const granjet::SimStats after = sim->stats();
+  const auto collisions = static_cast<double>(after.collisions - before.collisions);
+  state.counters["collisions/s"] = benchmark::Counter(collisions, benchmark::Counter::kIsRate);
+  // Per collision: the other events (cell crossings, stale predictions) that cost calendar work.
+  state.counters["crossings/coll"] =
+      static_cast<double>(after.cell_crossings - before.cell_crossings) / collisions;
+  state.counters["events/coll"] = static_cast<double>(after.events - before.events) / collisions;
 }
 
 // Arg: phi x 100.

@@ -13,17 +13,20 @@
 namespace granjet::ed {
 namespace {
 
-template <class Heap>
+template <class Calendar>
 class EventCalendarOrder : public ::testing::Test {};
-using Heaps = ::testing::Types<DaryHeap<4>, DaryHeap<8>, PairingHeap>;
-TYPED_TEST_SUITE(EventCalendarOrder, Heaps);
+using Calendars =
+    ::testing::Types<EventCalendar<DaryHeap<4>, 1>, EventCalendar<DaryHeap<8>, 1>,
+                     EventCalendar<PairingHeap, 1>, EventCalendar<DaryHeap<4>, 16>,
+                     EventCalendar<DaryHeap<4>, 32>, EventCalendar<PairingHeap, 8>, Calendar>;
+TYPED_TEST_SUITE(EventCalendarOrder, Calendars);
 
 TYPED_TEST(EventCalendarOrder, PopsInTheOrderOfASortedReference) {
   constexpr std::uint32_t kGrains = 500;
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     Random rng(seed);
-    EventCalendar<TypeParam> calendar(kGrains);
+    TypeParam calendar(kGrains);
     std::map<std::uint32_t, double> reference;  // grain -> time of the scheduled ones
     // Coarse times (multiples of 1/8) make ties frequent, so the id tie-break is exercised.
     const auto random_time = [&](double now) { return now + rng.below(64) / 8.0; };
@@ -63,7 +66,7 @@ TYPED_TEST(EventCalendarOrder, PopsInTheOrderOfASortedReference) {
 }
 
 TYPED_TEST(EventCalendarOrder, ShiftingTheOriginKeepsOrderAndMovesTimes) {
-  EventCalendar<TypeParam> calendar(4);
+  TypeParam calendar(4);
   calendar.schedule(2, 10.5);
   calendar.schedule(0, 12.0);
   calendar.schedule(3, 10.5);
