@@ -377,6 +377,18 @@ void EdSimulator<D>::report_collapse(std::uint32_t i, std::uint32_t j) const {
 template <int D>
 void EdSimulator<D>::take_snapshot() {
   const double now = time_ - origin_;
+  if (snapshot_removed_ == stats_.removed) {
+    // The same grains as the last snapshot: only positions and velocities change (hard grains
+    // keep their spins), so the store is refreshed in place instead of rebuilt.
+    std::size_t k = 0;
+    for (std::uint32_t i = 0; i < flight_.size(); ++i) {
+      if (!alive_[i]) continue;
+      snapshot_.position()[k] = cells_.wrap(flight_[i].position_at(now));
+      snapshot_.velocity()[k++] = flight_[i].v;
+    }
+    return;
+  }
+  snapshot_removed_ = stats_.removed;
   Particles<D> s;
   for (std::uint32_t i = 0; i < flight_.size(); ++i) {
     if (!alive_[i]) continue;

@@ -93,6 +93,7 @@ class EdSimulator final : public Simulator<D> {
   Scene scene_;
   Particles<D> grains_;    // ids, kinds, radii, masses and spins as built (never reordered)
   Particles<D> snapshot_;  // the grains still in the run, at time()
+  std::int64_t snapshot_removed_ = -1;  // grains removed when the snapshot's store was built
   Verification verify_;
   Restitution restitution_;
   CellList<D> cells_;
