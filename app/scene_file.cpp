@@ -172,9 +172,13 @@ const std::vector<Key>& keys() {
     k.push_back(choice_key<bool>("jet.mass_by_volume",
                                  "false: every grain has mass m (the study's convention)",
                                  FIELD(jet.mass_by_volume), {{"false", false}, {"true", true}}));
-    k.push_back(choice_key<WallKind>("wall.kind", "target grains", FIELD(wall.kind),
-                                     {{"tethered", WallKind::kTethered},
-                                      {"fixed", WallKind::kFixed}}));
+    k.push_back(choice_key<WallKind>(
+        "wall.kind",
+        "the target: tethered grains (springs k_w, dashpots eta_w), fixed grains (immovable), or "
+        "plate (a flat immovable wall in the grains' front face, no target grains)",
+        FIELD(wall.kind),
+        {{"tethered", WallKind::kTethered}, {"fixed", WallKind::kFixed},
+         {"plate", WallKind::kPlate}}));
     k.push_back(real_key("wall.diameter", "D_tar (3D) or 2 R_tar (2D), in d", FIELD(wall.diameter),
                          {1.0, false, kInf, false}));
     k.push_back(real_key("wall.spring", "tether spring k_w in m u0^2/d^2", FIELD(wall.spring),

@@ -10,7 +10,9 @@ namespace granjet {
 // kGas and kHcs are periodic boxes of unit grains (elastic equilibrium gas, homogeneous cooling).
 enum class SceneKind { kJet, kBinary, kGas, kHcs };
 enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
-enum class WallKind { kTethered, kFixed };
+// The target: tethered or fixed wall grains (spec §4), or a flat immovable plate in their front
+// face (event-driven backend).
+enum class WallKind { kTethered, kFixed, kPlate };
 enum class Dispersity { kMono, kBi };
 // Restitution laws of the event-driven backend [spec §8].
 enum class RestitutionLaw { kConstant, kVelocityDependent, kTcModel };

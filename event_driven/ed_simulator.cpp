@@ -65,10 +65,13 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
       grains_(std::move(grains)),
       verify_(verify),
       restitution_(scene),
+      plate_partner_(static_cast<std::uint32_t>(grains_.size())),
       cells_(make_cells<D>(scene, grains_)),
       calendar_(grains_.size()),
       collapse_(grains_.size()) {
   const std::size_t n = grains_.size();
+  if (scene.has_wall() && scene.wall.kind == WallKind::kPlate)
+    plate_.emplace(kPlateFace, scene.wall.diameter);
   flight_.resize(n);
   std::int64_t free_grains = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -82,7 +85,7 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
   next_collision_.resize(n);
   runner_up_.resize(n);
   next_exit_.resize(n);
-  events_of_.assign(n, 0);
+  events_of_.assign(n + 1, 0);
   last_partner_.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) last_partner_[i] = i;
   last_collision_.assign(n, -kNever);
@@ -120,7 +123,10 @@ void EdSimulator<D>::process(std::uint32_t i) {
   if (next_exit_[i].time <= next_collision_[i].time) {
     cross_cell(i);
   } else if (still_valid(next_collision_[i])) {
-    collide(i, next_collision_[i].partner);
+    if (next_collision_[i].partner == plate_partner_)
+      hit_plate(i);
+    else
+      collide(i, next_collision_[i].partner);
   } else {
     // Stale: the partner collided with someone else since the prediction. The runner-up, if
     // still valid, is the earliest of the others (the stale partner has scanned i itself).
@@ -179,6 +185,29 @@ void EdSimulator<D>::collide(std::uint32_t i, std::uint32_t j) {
   }
 }
 
+// [2.1]-[2.2] against the plate: an infinite-mass partner at rest, normal k towards the face.
+template <int D>
+void EdSimulator<D>::hit_plate(std::uint32_t i) {
+  Flight<D>& f = flight_[i];
+  f.stream_to(clock_);
+  const Vec<D> k = Plate<D>::inward();
+  const double v_n = k.dot(f.v);  // > 0: predicted only for a grain closing on the face
+  if (verify_ == Verification::kOn) check_plate_contact(i);
+  const double e = restitution_(v_n, clock_ - last_collision_[i], kNever);
+  Vec<D> plate_v = Vec<D>::Zero();
+  const Vec<D> impulse = granjet::collide(k, f.v, plate_v, grains_.inverse_mass()[i], 0.0, e);
+  if (recording_)
+    transfers_.push_back({grains_.id()[i], kPlateId, f.x, plate_->mirror(f.x), impulse});
+  ++stats_.collisions;
+  ++events_of_[i];
+  last_partner_[i] = plate_partner_;
+  last_collision_[i] = clock_;
+  if (collapse_.collided(i, clock_)) report_collapse(i, i);
+  predict_all(i);
+  predict_exit(i);
+  schedule(i);
+}
+
 template <int D>
 void EdSimulator<D>::cross_cell(std::uint32_t i) {
   ++stats_.cell_crossings;
@@ -226,7 +255,13 @@ void EdSimulator<D>::remove(std::uint32_t i) {
 template <int D>
 void EdSimulator<D>::predict_all(std::uint32_t i) {
   cells_.gather(i, hood_);
-  merge_hood(i, Prediction{}, Prediction{});
+  Prediction plate;
+  if (plate_) {
+    const Flight<D>& f = flight_[i];
+    plate.time = clock_ + plate_->contact_delay(f.position_at(clock_), f.v, f.radius);
+    plate.partner = plate_partner_;
+  }
+  merge_hood(i, plate, Prediction{});
 }
 
 template <int D>
@@ -349,7 +384,8 @@ double EdSimulator<D>::flight_time() const {
 
 template <int D>
 void EdSimulator<D>::report_collapse(std::uint32_t i, std::uint32_t j) const {
-  std::vector<GrainId> ids{grains_.id()[i], grains_.id()[j]};
+  std::vector<GrainId> ids{grains_.id()[i]};
+  if (j != i) ids.push_back(grains_.id()[j]);
   for (std::uint32_t g : collapse_.streaking(clock_)) {
     if (ids.size() >= 12) break;
     if (std::find(ids.begin(), ids.end(), grains_.id()[g]) == ids.end())
@@ -437,6 +473,17 @@ void EdSimulator<D>::check_contact(std::uint32_t i, std::uint32_t j, double dist
                       stats_.events, origin_ + clock_, {grains_.id()[i], grains_.id()[j]});
 }
 
+// At the face: the grain comes in over it (a slide over the edge is through the plane already).
+template <int D>
+void EdSimulator<D>::check_plate_contact(std::uint32_t i) const {
+  const Flight<D>& f = flight_[i];
+  const double height = plate_->height(f.x);
+  if (height > (1.0 + kContactTolerance) * f.radius || !plate_->over_face(f.x))
+    throw BlowUpError("plate collision at height " + std::to_string(height) + " instead of " +
+                          std::to_string(f.radius),
+                      stats_.events, origin_ + clock_, {grains_.id()[i]});
+}
+
 template <int D>
 void EdSimulator<D>::check_no_overlaps() const {
   const double now = time_ - origin_;
@@ -444,6 +491,12 @@ void EdSimulator<D>::check_no_overlaps() const {
   for (std::uint32_t i = 0; i < flight_.size(); ++i) {
     if (!alive_[i] || fixed(i)) continue;
     const Vec<D> x_i = flight_[i].position_at(now);
+    if (plate_ && plate_->over_face(x_i)) {
+      const double height = plate_->height(x_i);
+      if (height >= 0.0 && height < (1.0 - kContactTolerance) * flight_[i].radius)
+        throw BlowUpError("overlap with the plate: height " + std::to_string(height),
+                          stats_.events, time_, {grains_.id()[i]});
+    }
     cells_.gather(i, hood);
     for (std::size_t m = 0; m < hood.size; ++m) {
       const std::uint32_t k = hood.grain[m];
@@ -462,6 +515,13 @@ template <int D>
 std::unique_ptr<Simulator<D>> make_ed_simulator(const Scene& scene) {
   const Scene hard = hard_scene(scene);
   Particles<D> grains = build_initial_state<D>(hard);
+  if (hard.has_wall() && hard.wall.kind == WallKind::kPlate) {
+    // The plate replaces the target grains: only the jet is kept.
+    std::vector<std::uint32_t> jet;
+    for (std::uint32_t k = 0; k < grains.size(); ++k)
+      if (grains.kind()[k] == GrainKind::kFree) jet.push_back(k);
+    grains.gather(jet);
+  }
   return std::make_unique<EdSimulator<D>>(hard, std::move(grains));
 }
 

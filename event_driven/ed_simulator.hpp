@@ -1,6 +1,7 @@
 // The event-driven backend [spec §8]: inelastic hard disks (2D) or spheres (3D), polydisperse,
-// in free flight between binary collisions [2.1]-[2.2], with fixed (infinite-mass) wall grains,
-// periodic boxes for the gas scenes, and the soft backend's removal region for the jets.
+// in free flight between binary collisions [2.1]-[2.2], with fixed (infinite-mass) wall grains
+// or a flat target plate (event_driven/plate.hpp), periodic boxes for the gas scenes, and the
+// soft backend's removal region for the jets.
 //
 // Every grain has one entry in the event calendar, its earliest event: the best collision
 // found by its scans, or leaving its cell, whichever comes first. A scan keeps the earliest and
@@ -15,6 +16,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@
 #include "event_driven/collapse_detector.hpp"
 #include "event_driven/event_calendar.hpp"
 #include "event_driven/flight.hpp"
+#include "event_driven/plate.hpp"
 #include "event_driven/restitution.hpp"
 
 namespace granjet::ed {
@@ -35,7 +38,9 @@ enum class Verification { kOff, kOn };
 template <int D>
 class EdSimulator final : public Simulator<D> {
  public:
-  // Wall grains must have infinite mass (GrainKind::kWall, inverse mass 0).
+  // Wall grains must have infinite mass (GrainKind::kWall, inverse mass 0). A jet scene with
+  // wall.kind = plate has the plate as its target (make_ed_simulator leaves out the target
+  // grains built for the scene).
   EdSimulator(const Scene& scene, Particles<D> grains, Verification verify = Verification::kOff);
 
   std::string_view backend() const override { return "event_driven"; }
@@ -45,7 +50,8 @@ class EdSimulator final : public Simulator<D> {
   double time() const override { return time_; }
   const Particles<D>& particles() const override { return snapshot_; }
   // Every collision impulse since the last call, with both positions at the collision (the
-  // partner's periodic image next to the grain).
+  // partner's periodic image next to the grain). A plate collision has partner id kPlateId and
+  // the grain's mirror image through the face as partner position (Plate::mirror).
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   void record_transfers(bool on) override;
   SimStats stats() const override { return stats_; }
@@ -66,12 +72,14 @@ class EdSimulator final : public Simulator<D> {
 
   void process(std::uint32_t i);
   void collide(std::uint32_t i, std::uint32_t j);
+  void hit_plate(std::uint32_t i);
   void cross_cell(std::uint32_t i);
   void remove(std::uint32_t i);
   bool still_valid(const Prediction& p) const {
     return p.time == kNever || events_of_[p.partner] == p.partner_events;
   }
-  // Scans every grain in reach of i (kAll) or only those of the layer i's last move brought in.
+  // Scans every grain in reach of i (and the plate) or only those of the layer i's last move
+  // brought in.
   void predict_all(std::uint32_t i);
   void predict_new_layer(std::uint32_t i, const Crossing& moved);
   // Merges the collisions with the grains gathered in hood_ into i's earliest and runner-up,
@@ -87,6 +95,7 @@ class EdSimulator final : public Simulator<D> {
   [[noreturn]] void report_collapse(std::uint32_t i, std::uint32_t j) const;
   void take_snapshot();
   void check_contact(std::uint32_t i, std::uint32_t j, double distance) const;
+  void check_plate_contact(std::uint32_t i) const;
   void check_no_overlaps() const;
   bool fixed(std::uint32_t k) const { return grains_.inverse_mass()[k] == 0.0; }
 
@@ -96,6 +105,8 @@ class EdSimulator final : public Simulator<D> {
   std::int64_t snapshot_removed_ = -1;  // grains removed when the snapshot's store was built
   Verification verify_;
   Restitution restitution_;
+  std::optional<Plate<D>> plate_;
+  std::uint32_t plate_partner_;  // the plate's index as a prediction partner: one past the grains
   CellList<D> cells_;
   typename CellList<D>::Neighbourhood hood_;  // scratch of the predictions
   std::vector<double> pair_b_, pair_c_, pair_a_;  // and the pairs' quadratics (contact_delay)
@@ -109,7 +120,8 @@ class EdSimulator final : public Simulator<D> {
   std::vector<Prediction> next_collision_;
   std::vector<Prediction> runner_up_;
   std::vector<Crossing> next_exit_;
-  std::vector<std::uint32_t> events_of_;     // bumped whenever the velocity changes or removal
+  // Bumped whenever the velocity changes or removal; the plate's (last entry) never is.
+  std::vector<std::uint32_t> events_of_;
   std::vector<std::uint32_t> last_partner_;  // partner of the last collision (self if none)
   std::vector<double> last_collision_;       // its time (-kNever if none)
   std::vector<std::uint8_t> alive_;

@@ -14,7 +14,7 @@ bool touching_jet(const Scene& scene) {
 
 Scene hard_scene(const Scene& scene) {
   Scene hard = scene;
-  hard.wall.kind = WallKind::kFixed;
+  if (hard.wall.kind == WallKind::kTethered) hard.wall.kind = WallKind::kFixed;
   if (touching_jet(scene)) hard.jet.spacing = kMinJetSpacing;
   return hard;
 }

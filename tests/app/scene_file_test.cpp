@@ -38,6 +38,16 @@ TEST(SceneFile, OverridesWinAndResolvedIniReproducesTheScene) {
   EXPECT_NE(ini.find("dt = 0.002"), std::string::npos);  // dt stored resolved
 }
 
+// The flat target plate is a third target kind; it survives the resolved INI.
+TEST(SceneFile, WallKindPlateParsesAndRoundTrips) {
+  const Scene s = load_scene(kScenes + "/jet2d.ini", {"wall.kind=plate"});
+  EXPECT_EQ(s.wall.kind, WallKind::kPlate);
+  const std::string ini = scene_to_ini(s);
+  EXPECT_NE(ini.find("kind = plate"), std::string::npos);
+  std::istringstream in(ini);
+  EXPECT_EQ(parse_scene(in, "resolved", {}).wall.kind, WallKind::kPlate);
+}
+
 // Expects an InputError whose message names `key` and contains `allowed`.
 void expect_refused(const std::vector<std::string>& overrides, const std::string& key,
                     const std::string& allowed) {
@@ -62,7 +72,7 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"jet.phi_tilde=1.01"}, "jet.phi_tilde", "(0, 1]");
   expect_refused({"contact.restitution=abc"}, "contact.restitution", "not a finite number");
   expect_refused({"contact.restitution=nan"}, "contact.restitution", "not a finite number");
-  expect_refused({"wall.kind=soft"}, "wall.kind", "tethered | fixed");
+  expect_refused({"wall.kind=soft"}, "wall.kind", "tethered | fixed | plate");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
   expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");

@@ -42,6 +42,27 @@ TEST_F(EventDrivenCommand, JetsRunOnTheSameSceneFilesAndReportEventCounts) {
   EXPECT_NE(err_.find("jet.spacing = 1 becomes 1.001"), std::string::npos) << err_;
 }
 
+// wall.kind = plate: the flat target replaces the target grains, so the frames hold the jet only.
+TEST_F(EventDrivenCommand, JetsRunOnThePlateTargetWithoutTargetGrains) {
+  for (const std::string jet : {"jet2d.ini", "jet3d.ini"}) {
+    SCOPED_TRACE(jet);
+    ASSERT_EQ(granjet("run " + scene(jet) +
+                      " --backend event_driven --quiet --set wall.kind=plate"
+                      " --set jet.grains=500 --set run.t_end=15 --set output.interval=5 --out " +
+                      (dir_ / "jet.h5").string() + " --summary " + (dir_ / "jet.json").string()),
+              0)
+        << err_;
+    EXPECT_EQ(err_.find("tethered"), std::string::npos) << err_;
+    const nlohmann::json j = summary("jet.json");
+    EXPECT_EQ(j["status"], "complete");
+    EXPECT_GT(j["collisions"].get<std::int64_t>(), 1000);
+    const auto last = jet == "jet2d.ini" ? analysis::read_frame<2>(dir_ / "jet.h5", 3).id
+                                         : analysis::read_frame<3>(dir_ / "jet.h5", 3).id;
+    ASSERT_FALSE(last.empty());
+    for (const auto id : last) EXPECT_LT(id, 500);  // jet grains only
+  }
+}
+
 TEST_F(EventDrivenCommand, SameSceneAndSeedGiveBitIdenticalFrames) {
   const std::string args = "run " + scene("jet2d.ini") +
                            " --backend event_driven --quiet --set jet.grains=600"
