@@ -302,12 +302,14 @@ def measure(parts, runner, only):
             for r in binary:
                 r.update(errors_a(r))
             e0 = part["restitution"]
-            predicted = {(row["integrator"], row["dt_over_tc"]):
-                         (1 - row["e"] ** 2) / (1 - e0 ** 2) - 1 if np.isfinite(row["err"])
-                         else math.nan for row in phase_rows(binary)}
+            rows = {(row["integrator"], row["dt_over_tc"]): row for row in phase_rows(binary)}
             for r in runs:
-                if r["backend"] == "soft_dem":
-                    r["predicted"] = predicted.get((r["integrator"], r["dt_over_tc"]), math.nan)
+                row = rows.get((r.get("integrator"), r.get("dt_over_tc")))
+                if r["backend"] == "soft_dem" and row:
+                    r["predicted"] = (1 - row["e"] ** 2) / (1 - e0 ** 2) - 1 \
+                        if np.isfinite(row["err"]) else math.nan
+                    r["predicted_blowups"] = row["failed"]
+                    r["predicted_phases"] = row["phase_count"]
         else:
             ref = next(r for r in runs if r["role"] == "reference")
             if ref["exit"] != 0:
@@ -524,7 +526,10 @@ def secs(x):
 
 
 def status_text(r):
-    return "" if r["exit"] == 0 else " (" + r["status"].replace("granjet: ", "").replace("|", "/")[:70] + ")"
+    if r["exit"] == 0:
+        return ""
+    text = r["status"].replace("granjet: ", "").replace("|", "/")
+    return " (" + (text if len(text) <= 100 else text[:100].rsplit(" ", 1)[0] + " ...") + ")"
 
 
 def table_a(part):
@@ -560,7 +565,10 @@ def table_b(part):
                     f"{r['t_c'] if soft_run else '-'} | {r['dt_over_tc'] if soft_run else '-'} | "
                     f"{secs(r['wall'])} | {secs(r['cpu'])} | {rate} | {signed} | "
                     + (f"{100 * r['predicted']:+.2f}%" if np.isfinite(r.get("predicted", math.nan))
-                       else "-")
+                       else "blow-up" if r.get("predicted_blowups") else "-")
+                    + (f" ({r['predicted_blowups']} of {r['predicted_phases']} phases blow up)"
+                       if r.get("predicted_blowups") and np.isfinite(r.get("predicted", math.nan))
+                       else "")
                     + f" | {'*' if r.get('pareto') else ''} |")
     return "\n".join(rows)
 
@@ -643,11 +651,14 @@ def lesson_b(part):
     text += "; ".join(
         f"dt = {k:g} t_c: " + ", ".join(
             f"{integ} {span([r['signed'] for r in soft_runs if r['dt_over_tc'] == k and r['integrator'] == integ])}"
-            + (f" (binary collision predicts {100 * pred:+.0f}%)" if np.isfinite(pred) else "")
+            + (f" (binary collision predicts {100 * pred:+.0f}%)" if np.isfinite(pred) else
+               " (where the binary collision stops as a blow-up, its kinetic energy rising "
+               "above the start: the gas's total never does, so it runs on)" if blow else "")
             for integ in ("ab2", "verlet")
             if any(r["dt_over_tc"] == k and r["integrator"] == integ for r in soft_runs)
-            for pred in [next(r.get("predicted", math.nan) for r in soft_runs
-                              if r["dt_over_tc"] == k and r["integrator"] == integ)])
+            for pred, blow in [next((r.get("predicted", math.nan), r.get("predicted_blowups", 0))
+                                    for r in soft_runs
+                                    if r["dt_over_tc"] == k and r["integrator"] == integ)])
         for k in ratios)
     coarse_sign = {i: [np.sign(r["signed"]) for r in soft_runs if r["integrator"] == i and
                        r["dt_over_tc"] >= 0.1 - 1e-12] for i in ("ab2", "verlet")}
