@@ -122,9 +122,10 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
     std::vector<double> thread_speed2(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
-      double& speed2 = thread_speed2[thread_index()];
-#pragma omp for schedule(static)
+      double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
+#pragma omp for schedule(static) nowait
       for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predict_verlet(i));
+      thread_speed2[thread_index()] = speed2;
     }
     double speed2 = 0.0;
     for (double s : thread_speed2) speed2 = sticky_max(speed2, s);
@@ -349,8 +350,8 @@ double DemSimulator<D, kFriction, kMono, Space>::threaded_force_pass(AfterRow&& 
             }
           });
     // (the implicit barrier: every pair force is in place)
-    double& largest = thread_largest[thread_index()];
-#pragma omp for schedule(static)
+    double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
+#pragma omp for schedule(static) nowait
     for (std::int64_t i = 0; i < n; ++i) {
       Vec<D> force_i = force_[i];
       Spin<D> torque_i = torque_[i];
@@ -369,6 +370,7 @@ double DemSimulator<D, kFriction, kMono, Space>::threaded_force_pass(AfterRow&& 
       torque_[i] = torque_i;
       largest = sticky_max(largest, after_row(i));
     }
+    thread_largest[thread_index()] = largest;
   }
   stats_.contacts = contacts;
   // A blown step is reported as the serial pass does; the state it integrated is lost anyway.
