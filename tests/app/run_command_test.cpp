@@ -71,6 +71,18 @@ TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
   EXPECT_EQ(granjet("frobnicate"), 2);
 }
 
+// A step coarser than 0.05 t_c runs, but says what it costs (no blow-up would tell).
+TEST_F(GranjetCommand, CoarseStepRunsWithANoteNamingItsCost) {
+  const fs::path out = dir_ / "coarse.h5";
+  EXPECT_EQ(granjet("run " + scene("binary.ini") + " --quiet --set run.dt=0.01 --out " +
+                    out.string()),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("run.dt = 0.1 t_c"), std::string::npos) << err_;
+  EXPECT_EQ(granjet("run " + scene("binary.ini") + " --quiet --out " + out.string()), 0);
+  EXPECT_EQ(err_.find("run.dt"), std::string::npos) << err_;  // the study's 0.02 t_c: silent
+}
+
 TEST_F(GranjetCommand, BlowUpStopsWithStepAndGrainsAndKeepsAReadablePartialFile) {
   // dt = 0.9 t_c is far beyond the spring's stability limit: the first impacts explode.
   const fs::path out = dir_ / "blow.h5";
