@@ -32,7 +32,7 @@ std::vector<std::string> backend_notes(const std::string& backend, const Scene& 
   if (backend == "event_driven") return {ed::scene_note(scene)};
   // Coarse steps change the dissipation without any blow-up to report (an HCS at dt = 0.2 t_c
   // with AB2 cools 62% too slowly, docs/run_time_vs_error.md).
-  if (const double steps = scene.dt() / scene.contact.contact_time; steps > 0.05) {
+  if (const double steps = scene.dt() / scene.contact.contact_time; steps > 0.05 + 1e-9) {
     std::ostringstream note;
     note << "run.dt = " << std::setprecision(3) << steps << " t_c: coarser than 0.05 t_c, where "
          << "one collision's e and t_c stay within 1% (docs/run_time_vs_error.md); dissipation "
