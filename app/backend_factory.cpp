@@ -12,17 +12,10 @@ namespace granjet {
 
 std::vector<std::string> backend_names() { return {"soft_dem", "event_driven"}; }
 
-void check_backend(const std::string& backend, const Scene& scene) {
-  if (backend == "soft_dem") {
-    // The plate is a hard-core wall so far: a soft grain-plate contact law is not written yet.
-    if (scene.has_wall() && scene.wall.kind == WallKind::kPlate)
-      throw InputError("wall.kind", "plate runs on --backend event_driven only; soft_dem runs "
-                                    "the target as grains: wall.kind = tethered | fixed");
-    return;
-  }
-  // The event-driven backend runs every scene (event_driven/scene_support.hpp says what the
-  // hard-core version changes).
-  if (backend == "event_driven") return;
+void check_backend(const std::string& backend, const Scene& /*scene*/) {
+  // Both run every scene (event_driven/scene_support.hpp says what the hard-core version
+  // changes).
+  if (backend == "soft_dem" || backend == "event_driven") return;
   std::string allowed;
   for (const std::string& name : backend_names()) allowed += (allowed.empty() ? "" : ", ") + name;
   throw InputError("--backend", "'" + backend + "' is not available; allowed: " + allowed);

@@ -71,7 +71,7 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
       collapse_(grains_.size()) {
   const std::size_t n = grains_.size();
   if (scene.has_wall() && scene.wall.kind == WallKind::kPlate)
-    plate_.emplace(kPlateFace, scene.wall.diameter);
+    plate_.emplace(scene.wall.diameter);
   flight_.resize(n);
   std::int64_t free_grains = 0;
   for (std::uint32_t i = 0; i < n; ++i) {

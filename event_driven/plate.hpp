@@ -15,24 +15,18 @@
 #include <cmath>
 
 #include "core/particles.hpp"
+#include "core/plate_face.hpp"
 #include "event_driven/flight.hpp"
 
 namespace granjet::ed {
 
-// The partner id of plate collisions in the impulses handed to the analysis (PairImpulse::j).
-inline constexpr GrainId kPlateId = -1;
-
-// The target grains (diameter d) sit centred on the target plane (core/initial_state.cpp): the
-// plate takes the place of their front face, d/2 in front of the plane, so the jet's front row
-// keeps the scene's gap to the target.
-inline constexpr double kPlateFace = 0.5;
-
 template <int D>
-class Plate {
+class Plate : public PlateFace<D> {
  public:
-  static constexpr int kAxis = Dim<D>::kJetAxis;
+  using PlateFace<D>::kAxis;
+  using PlateFace<D>::height;
 
-  Plate(double face, double diameter) : face_(face), radius_(0.5 * diameter) {}
+  explicit Plate(double diameter) : PlateFace<D>(diameter) {}
 
   // Time until the grain (centre x at its own time, velocity v, radius r) touches the face, or
   // kNever.
@@ -46,7 +40,7 @@ class Plate {
     lateral[kAxis] = 0.0;
     drift[kAxis] = 0.0;
     const double a = drift.squaredNorm(), b = lateral.dot(drift);
-    const double c = lateral.squaredNorm() - radius_ * radius_;
+    const double c = lateral.squaredNorm() - this->radius_ * this->radius_;
     const double disc = b * b - a * c;
     double enter = 0.0, leave = kNever;
     if (c > 0.0) {  // beside the edge now: over the face only if it moves in
@@ -58,31 +52,12 @@ class Plate {
     return when <= leave && when < through ? when : kNever;
   }
 
-  // Grain x's mirror image through the face: the partner position of a plate collision handed
-  // to the analysis, so that r_i - r_j spans grain and image as for two grains in contact; the
-  // half behind the face lies outside every bin, the half in front is the grain's own share.
-  Vec<D> mirror(Vec<D> x) const {
-    x[kAxis] = 2.0 * face_ - x[kAxis];
-    return x;
-  }
-
   // The unit normal from a grain in front of the face towards it (the k of [2.1]).
   static Vec<D> inward() {
     Vec<D> k = Vec<D>::Zero();
     k[kAxis] = -1.0;
     return k;
   }
-
-  // The centre's height above the face plane, and whether the centre is over the face.
-  double height(const Vec<D>& x) const { return x[kAxis] - face_; }
-  bool over_face(Vec<D> x) const {
-    x[kAxis] = 0.0;
-    return x.squaredNorm() <= radius_ * radius_;
-  }
-
- private:
-  double face_;
-  double radius_;
 };
 
 }  // namespace granjet::ed

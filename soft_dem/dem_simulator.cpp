@@ -23,6 +23,16 @@ int thread_index() {
 #endif
 }
 
+// A grain against the immovable plate moves with its own mass, a pair with half of it: twice
+// the pair's springs and dashpots give the same e and t_c [3.4]-[3.5] (equal masses m = 1).
+ContactCoefficients against_plate(ContactCoefficients c) {
+  c.kn *= 2.0;
+  c.eta_n *= 2.0;
+  c.kt *= 2.0;
+  c.eta_t *= 2.0;
+  return c;
+}
+
 // The larger of the two, where a NaN wins and stays (so a blow-up is not lost in a maximum).
 double sticky_max(double largest, double value) {
   return value > largest || std::isnan(value) ? value : largest;
@@ -37,10 +47,13 @@ DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Parti
       space_(std::move(space)),
       p_(std::move(initial)),
       law_{contact_coefficients(scene.contact), scene.dt()},
+      plate_law_{against_plate(law_.c), scene.dt()},
       dt_(scene.dt()),
       overlap_limit_(scene.run.max_overlap),
       tethered_(scene.has_wall() && scene.wall.kind == WallKind::kTethered),
       threads_(scene.run.threads) {
+  if (has_plate(scene)) plate_.emplace(scene.wall.diameter);
+  if (kFriction && plate_) plate_shear_.assign(p_.size(), Vec<D>::Zero());
   if (tethered_) wall_ = TetheredWall<D>(p_, scene.wall.spring,
                                          scene.wall.damping_ratio * law_.c.eta_n);
   const std::size_t n = p_.size();
@@ -196,6 +209,47 @@ void DemSimulator<D, kFriction, kMono, Space>::correct_verlet(std::size_t i) {
   }
 }
 
+// The plate is a face only (core/plate_face.hpp): a grain touches it while its centre is over
+// the face and within its radius of the face plane. The contact point is on the face, so the
+// lever arm is the centre's height.
+template <int D, bool kFriction, bool kMono, class Space>
+template <class OnContact, class OnApart>
+void DemSimulator<D, kFriction, kMono, Space>::plate_contact_of(std::size_t i,
+                                                              OnContact&& on_contact,
+                                                              OnApart&& on_apart) const {
+  const Vec<D>& x = p_.position()[i];
+  const double r = radius_of(p_.radius(), i);
+  const double height = plate_->height(x);
+  if (height >= r || !plate_->over_face(x)) {
+    on_apart();
+    return;
+  }
+  const ContactGeometry<D> g{PlateFace<D>::outward(), r - height, height, 0.0};
+  Vec<D> v_rel = p_.velocity()[i];
+  if constexpr (kFriction) v_rel -= Dim<D>::spin_cross(g.lever_i * p_.spin()[i], g.n);
+  on_contact(g, v_rel);
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+bool DemSimulator<D, kFriction, kMono, Space>::add_plate_force(std::size_t i, Vec<D>& force_i,
+                                                               Spin<D>& torque_i) {
+  bool blown = false;
+  Vec<D> no_history = Vec<D>::Zero();
+  plate_contact_of(
+      i,
+      [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+        blown = g.overlap > overlap_limit_ * radius_of(p_.radius(), i);
+        Vec<D>& shear = kFriction ? plate_shear_[i] : no_history;
+        const Vec<D> f = plate_law_.force(g, v_rel, shear);
+        force_i += f;
+        if constexpr (kFriction) torque_i -= g.lever_i * Dim<D>::cross(g.n, f);
+      },
+      [&] {
+        if constexpr (kFriction) plate_shear_[i].setZero();
+      });
+  return blown;
+}
+
 template <int D, bool kFriction, bool kMono, class Space>
 template <class OnContact, class OnApart>
 void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
@@ -286,15 +340,16 @@ double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row
             }
           }
         });
+    if (plate_ && add_plate_force(i, force_i, torque_i) && !blown) {
+      blown = true;
+      blown_i = blown_j = i;
+    }
     force_[i] = force_i;
     torque_[i] = torque_i;
     largest = sticky_max(largest, after_row(i));
   }
   stats_.contacts = contacts;
-  if (blown)
-    throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
-                          " of the smaller radius",
-                      step_, time(), {p_.id()[blown_i], p_.id()[blown_j]});
+  if (blown) throw_overlap(blown_i, blown_j);
   // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
   if constexpr (kFriction) torque_.swap(torque_prev_);
@@ -315,10 +370,13 @@ double DemSimulator<D, kFriction, kMono, Space>::threaded_force_pass(AfterRow&& 
   const auto radius = p_.radius();
   const auto n = static_cast<std::int64_t>(p_.size());
   std::int64_t contacts = 0;
-  std::uint32_t first_blown = UINT32_MAX;  // the serial pass reports the first such pair
+  // The serial pass reports the first pair, or grain on the plate, in its order.
+  std::uint32_t first_blown = UINT32_MAX;
+  std::int64_t first_blown_on_plate = n;
   std::vector<double> thread_largest(threads_, 0.0);
   // One parallel region per step: waking the threads costs more than the barriers inside.
-#pragma omp parallel num_threads(threads_) reduction(+ : contacts) reduction(min : first_blown)
+#pragma omp parallel num_threads(threads_) reduction(+ : contacts) reduction(min : first_blown) \
+    reduction(min : first_blown_on_plate)
   {
     Vec<D> no_history = Vec<D>::Zero();
 #pragma omp for schedule(static)
@@ -366,6 +424,8 @@ double DemSimulator<D, kFriction, kMono, Space>::threaded_force_pass(AfterRow&& 
         force_i += pair_force_[k];
         if constexpr (kFriction) torque_i -= pair_torque_i_[k];
       }
+      if (plate_ && add_plate_force(i, force_i, torque_i))
+        first_blown_on_plate = std::min(first_blown_on_plate, i);
       force_[i] = force_i;
       torque_[i] = torque_i;
       largest = sticky_max(largest, after_row(i));
@@ -373,14 +433,14 @@ double DemSimulator<D, kFriction, kMono, Space>::threaded_force_pass(AfterRow&& 
     thread_largest[thread_index()] = largest;
   }
   stats_.contacts = contacts;
-  // A blown step is reported as the serial pass does; the state it integrated is lost anyway.
+  // A blown step is reported as the serial pass does (row i's pairs, then grain i on the
+  // plate, then row i + 1); the state it integrated is lost anyway.
   if (first_blown != UINT32_MAX) {
     const auto row = std::upper_bound(pairs_.first.begin(), pairs_.first.end(), first_blown);
-    const auto i = static_cast<std::size_t>(row - pairs_.first.begin() - 1);
-    throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
-                          " of the smaller radius",
-                      step_, time(), {p_.id()[i], p_.id()[pairs_.partner[first_blown]]});
+    const auto i = static_cast<std::int64_t>(row - pairs_.first.begin() - 1);
+    if (i <= first_blown_on_plate) throw_overlap(i, pairs_.partner[first_blown]);
   }
+  if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
   double largest = 0.0;
   for (double value : thread_largest) largest = sticky_max(largest, value);
   force_.swap(force_prev_);
@@ -404,6 +464,16 @@ void DemSimulator<D, kFriction, kMono, Space>::index_incoming_pairs() {
     pair_torque_i_.resize(pairs_.size());
     pair_torque_j_.resize(pairs_.size());
   }
+}
+
+// Grain i overlapping grain j, or the plate when j == i.
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::throw_overlap(std::size_t i, std::size_t j) const {
+  std::vector<GrainId> ids{p_.id()[i]};
+  if (j != i) ids.push_back(p_.id()[j]);
+  throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
+                        " of the smaller radius" + (j == i ? " against the plate" : ""),
+                    step_, time(), ids);
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -443,6 +513,7 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
   Particles<D>::gather_one(force_prev_, keep);
   Particles<D>::gather_one(torque_prev_, keep);
   Particles<D>::gather_one(inv_inertia_, keep);
+  if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, keep);
 }
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
@@ -479,6 +550,7 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
   force_.assign(p_.size(), Vec<D>::Zero());  // rebuilds come between force passes
   torque_.assign(p_.size(), Dim<D>::zero_spin());
   Particles<D>::gather_one(inv_inertia_, order);
+  if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, order);
   for (std::size_t i = 0; i < p_.size(); ++i)
     index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
 
@@ -523,6 +595,16 @@ void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<Pai
     // The partner's nearest image: position_i - position_j is the contact's separation.
     out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
   }, [](std::uint32_t) {});
+  if (!plate_) return;
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    plate_contact_of(
+        i,
+        [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          Vec<D> shear = plate_history(i);  // a copy, as above
+          const Vec<D> f = plate_law_.force(g, v_rel, shear);
+          out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
+        },
+        [] {});
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -538,6 +620,14 @@ EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
                        const Vec<D>&) {
     e.elastic += law_.elastic_energy(g, history(k));
   }, [](std::uint32_t) {});
+  if (plate_)
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      plate_contact_of(
+          i,
+          [&](const ContactGeometry<D>& g, const Vec<D>&) {
+            e.elastic += plate_law_.elastic_energy(g, plate_history(i));
+          },
+          [] {});
   if (tethered_) e.elastic += wall_.elastic_energy(p_, [this](GrainId id) { return index_of(id); });
   e.removed = removed_energy_;
   e.dissipated = initial_energy_ - e.total() - e.removed;
@@ -566,6 +656,12 @@ template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
   if (scene.periodic()) return make_periodic_dem_simulator<D>(scene);
   Particles<D> initial = build_initial_state<D>(scene);
+  if (has_plate(scene)) {  // the plate replaces the target grains
+    std::vector<std::uint32_t> free;
+    for (std::uint32_t i = 0; i < initial.size(); ++i)
+      if (initial.kind()[i] == GrainKind::kFree) free.push_back(i);
+    initial.gather(free);
+  }
   const auto radii = initial.radius();
   const bool mono = std::adjacent_find(radii.begin(), radii.end(), std::not_equal_to<>()) ==
                     radii.end();

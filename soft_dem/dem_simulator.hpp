@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/neighbour_list.hpp"
+#include "core/plate_face.hpp"
 #include "core/scene.hpp"
 #include "core/space.hpp"
 #include "core/simulator.hpp"
@@ -54,6 +56,7 @@ class DemSimulator final : public Simulator<D> {
   void index_incoming_pairs();
   void rebuild();
   void remove_escaped();
+  [[noreturn]] void throw_overlap(std::size_t i, std::size_t j) const;
   void check_finite() const;
   void check_energy() const;
   std::size_t index_of(GrainId id) const { return index_of_id_[id]; }
@@ -66,6 +69,17 @@ class DemSimulator final : public Simulator<D> {
     if constexpr (kFriction) return shear_[k];
     return Vec<D>::Zero();
   }
+  Vec<D> plate_history(std::size_t i) const {
+    if constexpr (kFriction) return plate_shear_[i];
+    return Vec<D>::Zero();
+  }
+  // Grain i against the plate (wall.kind = plate): on_contact(geometry, v_rel) while it
+  // touches, on_apart() otherwise.
+  template <class OnContact, class OnApart>
+  void plate_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
+  // Adds grain i's plate force and torque (and advances its history); true if it overlaps more
+  // than run.max_overlap allows.
+  bool add_plate_force(std::size_t i, Vec<D>& force_i, Spin<D>& torque_i);
   // Calls on_contact(i, j, k, geometry, v_rel) for listed pairs in contact, on_apart(k) for the
   // others (k indexes the pair list).
   template <class OnContact, class OnApart>
@@ -91,6 +105,12 @@ class DemSimulator final : public Simulator<D> {
 
   CellGrid<D> grid_;
   PairList pairs_;
+  // The plate, its contact law (a grain against an immovable face: twice the pair's stiffness
+  // and damping give the pair's e and t_c for the study's equal masses) and each grain's u_t
+  // against it (frictional scenes only).
+  std::optional<PlateFace<D>> plate_;
+  Law plate_law_;
+  std::vector<Vec<D>> plate_shear_;
   std::vector<Vec<D>> shear_;          // u_t of each listed pair (frictional scenes only)
   std::vector<std::uint8_t> touching_;  // whether that pair touched at the last evaluation
 

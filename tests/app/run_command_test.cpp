@@ -56,8 +56,7 @@ TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
   const fs::path out = dir_ / "bad.h5";
   for (const std::string set : {"contact.restitution=1.5", "contact.contact_time=0",
                                  "contact.friction=-1", "run.dt=0.1", "jet.phi_tilde=2",
-                                 "jet.colour=red", "run.threads=0",
-                                 "wall.kind=plate"}) {  // plate: event_driven only, so far
+                                 "jet.colour=red", "run.threads=0"}) {
     EXPECT_EQ(granjet("run " + scene("jet3d.ini") + " --set " + set + " --out " + out.string()),
               2);
     EXPECT_NE(err_.find(set.substr(0, set.find('='))), std::string::npos) << err_;

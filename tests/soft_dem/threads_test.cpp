@@ -1,6 +1,6 @@
 // run.threads changes nothing but the speed: the threaded force pass (pair forces, then every
 // grain sums its own in the serial order) gives the serial pass's results bit for bit, with
-// friction and rotation, both integrators, a tethered wall and a periodic box.
+// friction and rotation, both integrators, a tethered wall, the plate and a periodic box.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -55,6 +55,11 @@ TEST(Threads, Jet2dFrictionalBidisperseAb2IsBitIdentical) {
 TEST(Threads, Jet3dFrictionalVerletIsBitIdentical) {
   expect_thread_count_invariant<3>(
       "jet3d.ini", {"jet.grains=2000", "run.integrator=verlet", "wall.diameter=14"}, 3.0);
+}
+
+TEST(Threads, Jet2dOnTheFrictionalPlateIsBitIdentical) {
+  expect_thread_count_invariant<2>(
+      "jet2d.ini", {"jet.grains=1500", "contact.friction=0.5", "wall.kind=plate"}, 3.0);
 }
 
 TEST(Threads, PeriodicGasIsBitIdentical) {

@@ -1,0 +1,56 @@
+// The flat target plate (wall.kind = plate) as geometry both backends share: an immovable face
+// normal to the jet axis, a disk of diameter wall.diameter (3D) or a segment of that length
+// (2D). A face only: a grain meets it while its centre is over the face and in front of it.
+#pragma once
+
+#include "core/dim.hpp"
+#include "core/particles.hpp"
+#include "core/scene.hpp"
+
+namespace granjet {
+
+// The partner id of plate contacts in the momentum transfers handed to the analysis
+// (PairImpulse::j); the partner position is the grain's mirror image through the face.
+inline constexpr GrainId kPlateId = -1;
+
+// The target grains (diameter d) sit centred on the target plane (core/initial_state.cpp): the
+// plate takes the place of their front face, d/2 in front of the plane, so the jet's front row
+// keeps the scene's gap to the target.
+inline constexpr double kPlateFace = 0.5;
+
+template <int D>
+class PlateFace {
+ public:
+  static constexpr int kAxis = Dim<D>::kJetAxis;
+
+  explicit PlateFace(double diameter) : radius_(0.5 * diameter) {}
+
+  // The centre's height above the face plane, and whether the centre is over the face.
+  double height(const Vec<D>& x) const { return x[kAxis] - kPlateFace; }
+  bool over_face(Vec<D> x) const {
+    x[kAxis] = 0.0;
+    return x.squaredNorm() <= radius_ * radius_;
+  }
+  // Grain x's mirror image through the face: r_i - r_j then spans grain and image as for two
+  // grains in contact; the half behind the face lies outside every bin.
+  Vec<D> mirror(Vec<D> x) const {
+    x[kAxis] = 2.0 * kPlateFace - x[kAxis];
+    return x;
+  }
+  // The unit normal from the face towards the grains in front of it.
+  static Vec<D> outward() {
+    Vec<D> n = Vec<D>::Zero();
+    n[kAxis] = 1.0;
+    return n;
+  }
+  double radius() const { return radius_; }
+
+ protected:
+  double radius_;
+};
+
+inline bool has_plate(const Scene& scene) {
+  return scene.has_wall() && scene.wall.kind == WallKind::kPlate;
+}
+
+}  // namespace granjet
