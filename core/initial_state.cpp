@@ -135,6 +135,7 @@ Particles<D> build_jet(const Scene& scene) {
   const double wall_mass = scene.wall.kind == WallKind::kFixed
                                ? std::numeric_limits<double>::infinity()
                                : 1.0;
+  if (scene.wall.kind == WallKind::kPlate) return p;  // the plate replaces the target grains
   for (const Vec<D>& x : wall)
     p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kWallGrainDiameter, wall_mass);
   return p;

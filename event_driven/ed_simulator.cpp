@@ -514,15 +514,7 @@ void EdSimulator<D>::check_no_overlaps() const {
 template <int D>
 std::unique_ptr<Simulator<D>> make_ed_simulator(const Scene& scene) {
   const Scene hard = hard_scene(scene);
-  Particles<D> grains = build_initial_state<D>(hard);
-  if (hard.has_wall() && hard.wall.kind == WallKind::kPlate) {
-    // The plate replaces the target grains: only the jet is kept.
-    std::vector<std::uint32_t> jet;
-    for (std::uint32_t k = 0; k < grains.size(); ++k)
-      if (grains.kind()[k] == GrainKind::kFree) jet.push_back(k);
-    grains.gather(jet);
-  }
-  return std::make_unique<EdSimulator<D>>(hard, std::move(grains));
+  return std::make_unique<EdSimulator<D>>(hard, build_initial_state<D>(hard));
 }
 
 template class EdSimulator<2>;

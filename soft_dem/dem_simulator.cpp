@@ -656,12 +656,6 @@ template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
   if (scene.periodic()) return make_periodic_dem_simulator<D>(scene);
   Particles<D> initial = build_initial_state<D>(scene);
-  if (has_plate(scene)) {  // the plate replaces the target grains
-    std::vector<std::uint32_t> free;
-    for (std::uint32_t i = 0; i < initial.size(); ++i)
-      if (initial.kind()[i] == GrainKind::kFree) free.push_back(i);
-    initial.gather(free);
-  }
   const auto radii = initial.radius();
   const bool mono = std::adjacent_find(radii.begin(), radii.end(), std::not_equal_to<>()) ==
                     radii.end();

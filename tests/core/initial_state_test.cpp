@@ -43,6 +43,18 @@ TEST(InitialState, Jet3dHas20000GrainsInTheCylinderAnd439TargetGrains) {
   EXPECT_NEAR(z_min, 2.0, 1e-12);  // a surface gap of 1 d to the target
 }
 
+// The plate takes the target grains' place: the same jet, no target grains.
+TEST(InitialState, PlateSceneHasTheJetAndNoTargetGrains) {
+  Scene s;
+  s.wall.kind = WallKind::kPlate;
+  const Particles<3> p = build_initial_state<3>(s);
+  EXPECT_EQ(count(p, GrainKind::kFree), 20000);
+  EXPECT_EQ(count(p, GrainKind::kWall), 0);
+  s.wall.kind = WallKind::kFixed;
+  const Particles<3> grains = build_initial_state<3>(s);
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(p.position()[i], grains.position()[i]);
+}
+
 TEST(InitialState, KeptFractionIsPhiTilde) {
   Scene s;
   s.jet.grains = 4000;
