@@ -79,7 +79,8 @@ class DemSimulator final : public Simulator<D> {
   void plate_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
   // Adds grain i's plate force and torque (and advances its history); true if it overlaps more
   // than run.max_overlap allows.
-  bool add_plate_force(std::size_t i, Vec<D>& force_i, Spin<D>& torque_i);
+  // Not inlined: it must not crowd the hot pair loop of scenes without a plate.
+  [[gnu::noinline]] bool add_plate_force(std::size_t i, Vec<D>& force_i, Spin<D>& torque_i);
   // Calls on_contact(i, j, k, geometry, v_rel) for listed pairs in contact, on_apart(k) for the
   // others (k indexes the pair list).
   template <class OnContact, class OnApart>
