@@ -550,13 +550,17 @@ def table_a(part):
     return "\n".join(rows)
 
 
+def role_tag(run):
+    """How a table names the reference run and the independent-start (noise) run."""
+    return {"reference": " **reference**", "noise": " (statistical spread)"}.get(run["role"], "")
+
+
 def table_b(part):
     rows = ["| setting | backend | t_c | dt/t_c | wall [s] | CPU [s] | cooling rate | "
             "rate / ED - 1 | binary's (1-e^2) bias | Pareto |",
             "|---|---|---|---|---|---|---|---|---|---|"]
     for r in part["runs"]:
-        tag = " **reference**" if r["role"] == "reference" else \
-            " (statistical spread)" if r["role"] == "noise" else ""
+        tag = role_tag(r)
         soft_run = r["backend"] == "soft_dem"
         rate = f"{r['rate']:.5f}" if np.isfinite(r.get("rate", math.nan)) else "-"
         signed = "0 (by definition)" if r["role"] == "reference" else \
@@ -578,8 +582,7 @@ def table_c(part):
             "error P (shift) | error T_g (shift) | Pareto |",
             "|---|---|---|---|---|---|---|---|---|---|"]
     for r in part["runs"]:
-        tag = " **reference**" if r["role"] == "reference" else \
-            " (statistical spread)" if r["role"] == "noise" else ""
+        tag = role_tag(r)
         soft_run = r["backend"] == "soft_dem"
         ref = r["role"] == "reference"
         rows.append(f"| {r['label']}{tag}{status_text(r)} | {r['backend']} | "
