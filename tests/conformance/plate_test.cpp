@@ -53,8 +53,9 @@ TYPED_TEST(PlateConformance, Eq2_1_HeadOnOnThePlateGivesTheRestitution) {
     Vec<D> on_grain = Vec<D>::Zero();
     for (const PairImpulse<D>& t : transfers)
       if (t.j == kPlateId) on_grain += t.impulse;
-    if (std::string(Backend::kName) == "event_driven")  // the soft backend samples forces
+    if (std::string(Backend::kName) == "event_driven") {  // the soft backend samples forces
       EXPECT_NEAR(on_grain[kAxis], 1.0 + e, 1e-14);
+    }
   }
 }
 

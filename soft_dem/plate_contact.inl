@@ -1,0 +1,44 @@
+// Part of soft_dem/dem_simulator.cpp (included there, inside namespace granjet::dem, before the
+// explicit instantiations): the grain-plate contact of wall.kind = plate.
+#pragma once
+
+// The plate is a face only (core/plate_face.hpp): a grain touches it while its centre is over
+// the face and within its radius of the face plane. The contact point is on the face, so the
+// lever arm is the centre's height.
+template <int D, bool kFriction, bool kMono, class Space>
+template <class OnContact, class OnApart>
+void DemSimulator<D, kFriction, kMono, Space>::plate_contact_of(std::size_t i,
+                                                              OnContact&& on_contact,
+                                                              OnApart&& on_apart) const {
+  const Vec<D>& x = p_.position()[i];
+  const double r = radius_of(p_.radius(), i);
+  const double height = plate_->height(x);
+  if (height >= r || !plate_->over_face(x)) {
+    on_apart();
+    return;
+  }
+  const ContactGeometry<D> g{PlateFace<D>::outward(), r - height, height, 0.0};
+  Vec<D> v_rel = p_.velocity()[i];
+  if constexpr (kFriction) v_rel -= Dim<D>::spin_cross(g.lever_i * p_.spin()[i], g.n);
+  on_contact(g, v_rel);
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+bool DemSimulator<D, kFriction, kMono, Space>::add_plate_force(std::size_t i, Vec<D>& force_i,
+                                                               Spin<D>& torque_i) {
+  bool blown = false;
+  Vec<D> no_history = Vec<D>::Zero();
+  plate_contact_of(
+      i,
+      [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+        blown = g.overlap > overlap_limit_ * radius_of(p_.radius(), i);
+        Vec<D>& shear = kFriction ? plate_shear_[i] : no_history;
+        const Vec<D> f = plate_law_.force(g, v_rel, shear);
+        force_i += f;
+        if constexpr (kFriction) torque_i -= g.lever_i * Dim<D>::cross(g.n, f);
+      },
+      [&] {
+        if constexpr (kFriction) plate_shear_[i].setZero();
+      });
+  return blown;
+}
