@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "--version") {
-      std::cout << "granjet " << granjet::kVersion << "\n";
+      std::cout << "granjet " << granjet::kVersion << " (commit " << granjet::kCommit << ")\n";
       return 0;
     }
     if (command == "run") return run(args);

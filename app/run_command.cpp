@@ -118,7 +118,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     std::cerr << "granjet: " << note << "\n";
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
   analysis::RunMetadata meta;
-  meta.creator_version = kVersion;
+  meta.creator_version = std::string(kVersion) + "+" + kCommit;  // semver build metadata
   meta.backend = options.backend;
   meta.scene_ini = scene_to_ini(scene);
   meta.dimension = D;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "app/commit.hpp"  // kCommit, generated at build time by app/commit.cmake
+
 namespace granjet {
 // From the CMake project version, so there is one place to bump it.
 inline constexpr const char* kVersion = GRANJET_VERSION;

@@ -70,6 +70,16 @@ TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
   EXPECT_EQ(granjet("frobnicate"), 2);
 }
 
+// --version names the commit it was built from (app/commit.cmake; "unknown" outside git).
+TEST_F(GranjetCommand, VersionNamesTheCommit) {
+  ASSERT_EQ(granjet("--version"), 0);
+  std::ifstream in(dir_ / "stdout.txt");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind(std::string("granjet ") + GRANJET_VERSION + " (commit ", 0), 0u) << line;
+  EXPECT_GT(line.size(), std::string("granjet  (commit )").size() + 6) << line;
+}
+
 // A step coarser than 0.05 t_c runs, but says what it costs (no blow-up would tell).
 TEST_F(GranjetCommand, CoarseStepRunsWithANoteNamingItsCost) {
   const fs::path out = dir_ / "coarse.h5";
