@@ -41,7 +41,7 @@ double sticky_max(double largest, double value) {
 }  // namespace
 
 #include "soft_dem/plate_contact.inl"
-#include "soft_dem/threaded_force_pass.inl"
+#include "soft_dem/force_pass.inl"
 
 template <int D, bool kFriction, bool kMono, class Space>
 DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
@@ -217,8 +217,6 @@ template <class OnContact, class OnApart>
 void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
                                                      OnApart&& on_apart) const {
   const auto x = p_.position();
-  const auto v = p_.velocity();
-  const auto w = p_.spin();
   const auto radius = p_.radius();
   const Vec<D> x_i = x[i];
   const double radius_i = radius_of(radius, i);
@@ -232,12 +230,24 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i
       on_apart(k);
       continue;
     }
-    const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius_i, radius_j);
-    Vec<D> v_rel = v[i] - v[j];
-    if constexpr (kFriction)
-      v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
+    const auto [g, v_rel] = contact_between(i, j, r_ij, d2);
     on_contact(j, k, g, v_rel);
   }
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+std::pair<ContactGeometry<D>, Vec<D>> DemSimulator<D, kFriction, kMono, Space>::contact_between(
+    std::size_t i, std::size_t j, const Vec<D>& r_ij, double d2) const {
+  const auto radius = p_.radius();
+  const auto v = p_.velocity();
+  const ContactGeometry<D> g =
+      contact_geometry<D>(r_ij, std::sqrt(d2), radius_of(radius, i), radius_of(radius, j));
+  Vec<D> v_rel = v[i] - v[j];
+  if constexpr (kFriction) {
+    const auto w = p_.spin();
+    v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
+  }
+  return {g, v_rel};
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -249,73 +259,6 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_c
         i, [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                const Vec<D>& v_rel) { on_contact(i, j, k, g, v_rel); },
         on_apart);
-}
-
-// Accumulates all forces at the current state and calls after_row(i) as soon as grain i's
-// force is complete. That is right after row i of the half list: rows k < i have added their
-// share already, and later rows never touch i. force_ and torque_ must be zero on entry.
-template <int D, bool kFriction, bool kMono, class Space>
-template <class AfterRow>
-[[gnu::flatten]]  // the hot loop: inline the contact law and the row visitor into it
-double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row) {
-  if (threads_ > 1) return threaded_force_pass(after_row);
-  if (tethered_)
-    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
-  const auto radius = p_.radius();
-  std::int64_t contacts = 0;
-  bool blown = false;  // some overlap beyond run.max_overlap of the smaller radius
-  std::size_t blown_i = 0, blown_j = 0;
-  Vec<D> no_history = Vec<D>::Zero();
-  double largest = 0.0;  // of the values after_row returns (a local: no aliasing in the loop)
-  for (std::size_t i = 0; i < p_.size(); ++i) {
-    // Grain i's sums stay in registers for its row: partners j > i never alias them.
-    Vec<D> force_i = force_[i];
-    Spin<D> torque_i = torque_[i];
-    for_each_contact_of(
-        i,
-        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-          ++contacts;
-          if (g.overlap > overlap_limit_ * std::min(radius_of(radius, i), radius_of(radius, j)) &&
-              !blown) {
-            blown = true;
-            blown_i = i;
-            blown_j = j;
-          }
-          if constexpr (kFriction) touching_[k] = 1;
-          Vec<D>& shear = kFriction ? shear_[k] : no_history;
-          const Vec<D> f = law_.force(g, v_rel, shear);
-          force_i += f;
-          force_[j] -= f;
-          if constexpr (kFriction) {
-            // Only the tangential part has a lever arm: tau = (contact - centre) x F.
-            const Spin<D> t = Dim<D>::cross(g.n, f);
-            torque_i -= g.lever_i * t;
-            torque_[j] -= g.lever_j * t;
-          }
-        },
-        [this](std::uint32_t k) {
-          // Apart: the history ends [spec §2]. The flag spares a write per pair and step.
-          if constexpr (kFriction) {
-            if (touching_[k]) {
-              shear_[k].setZero();
-              touching_[k] = 0;
-            }
-          }
-        });
-    if (plate_ && add_plate_force(i, force_i, torque_i) && !blown) {
-      blown = true;
-      blown_i = blown_j = i;
-    }
-    force_[i] = force_i;
-    torque_[i] = torque_i;
-    largest = sticky_max(largest, after_row(i));
-  }
-  stats_.contacts = contacts;
-  if (blown) throw_overlap(blown_i, blown_j);
-  // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
-  force_.swap(force_prev_);
-  if constexpr (kFriction) torque_.swap(torque_prev_);
-  return largest;
 }
 
 // Grain i overlapping grain j, or the plate when j == i.
@@ -379,12 +322,11 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
     Vec<D> shear;
   };
   std::vector<History> history;
-  if constexpr (kFriction) {
-    const std::size_t listed = pairs_.first.empty() ? 0 : p_.size();  // none before the first build
-    for (std::size_t i = 0; i < listed; ++i)
-      for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
-        if (touching_[k]) history.push_back({p_.id()[i], p_.id()[pairs_.partner[k]], shear_[k]});
-  }
+  if constexpr (kFriction)
+    for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
+      const std::uint32_t k = contact_pair_[c];
+      history.push_back({p_.id()[pair_row_[k]], p_.id()[pairs_.partner[k]], contact_shear_[c]});
+    }
   remove_escaped();
   double max_radius = 0.0;
   for (double r : p_.radius()) max_radius = std::max(max_radius, r);
@@ -412,23 +354,30 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
                         return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
                       },
                       pairs_, space_, threads_);
-  if constexpr (kFriction) {
-    shear_.assign(pairs_.size(), Vec<D>::Zero());
-    touching_.assign(pairs_.size(), 0);
-    for (const History& h : history) {
-      const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
-      if (a == kRemoved || b == kRemoved) continue;
-      const std::uint32_t i = std::min(a, b), j = std::max(a, b);
-      // Still touching, so still listed: find j in row i (a handful of partners).
-      for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
-        if (pairs_.partner[k] == j) {
-          shear_[k] = h.shear;
-          touching_[k] = 1;
-          break;
-        }
-    }
+  pair_row_.resize(pairs_.size());
+  for (std::uint32_t i = 0; i < p_.size(); ++i)
+    std::fill(pair_row_.begin() + pairs_.first[i], pair_row_.begin() + pairs_.first[i + 1], i);
+  // The contacts carried over, by their new list index.
+  std::vector<std::pair<std::uint32_t, Vec<D>>> carried;
+  for (const History& h : history) {
+    const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
+    if (a == kRemoved || b == kRemoved) continue;
+    const std::uint32_t i = std::min(a, b), j = std::max(a, b);
+    // Still touching, so still listed: find j in row i (a handful of partners).
+    for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
+      if (pairs_.partner[k] == j) {
+        carried.emplace_back(k, h.shear);
+        break;
+      }
   }
-  if (threads_ > 1) index_incoming_pairs();
+  std::sort(carried.begin(), carried.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  contact_pair_.clear();
+  contact_shear_.clear();
+  for (const auto& [k, shear] : carried) {
+    contact_pair_.push_back(k);
+    contact_shear_.push_back(shear);
+  }
   travel_ = 0.0;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
   ++stats_.neighbour_rebuilds;

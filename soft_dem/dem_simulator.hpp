@@ -6,9 +6,11 @@
 // periodic gas scenes use minimum-image separations (Space = PeriodicBox), all others none.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/neighbour_list.hpp"
@@ -47,14 +49,16 @@ class DemSimulator final : public Simulator<D> {
   double advance_ab2(std::size_t i);
   double predict_verlet(std::size_t i);
   void correct_verlet(std::size_t i);
-  // Returns the largest value after_row returned.
+  // Evaluates all forces at the current state, then calls after_row(i) for every grain with its
+  // total force (see force_pass.inl); returns the largest value after_row returned.
   template <class AfterRow>
   double force_pass(AfterRow&& after_row);
-  // The same with run.threads > 1, bit-identical: pair forces first, then every grain sums its
-  // own in the serial pass's order (see there).
-  template <class AfterRow>
-  double threaded_force_pass(AfterRow&& after_row);
-  void index_incoming_pairs();
+  // The listed pairs in contact, in list order, each with its history carried over.
+  void find_contacts();
+  // Each contact's force and torques; returns the first with an overlap beyond the limit, or
+  // the number of contacts if none.
+  std::size_t evaluate_contacts();
+  void accumulate_contact_forces();
   void rebuild();
   void remove_escaped();
   [[noreturn]] void throw_overlap(std::size_t i, std::size_t j) const;
@@ -66,8 +70,12 @@ class DemSimulator final : public Simulator<D> {
     if constexpr (kMono) return radius[0];
     return radius[i];
   }
+  // The tangential history of listed pair k: zero unless it touched at the last evaluation.
   Vec<D> history(std::uint32_t k) const {
-    if constexpr (kFriction) return shear_[k];
+    if constexpr (kFriction) {
+      const auto c = std::lower_bound(contact_pair_.begin(), contact_pair_.end(), k);
+      if (c != contact_pair_.end() && *c == k) return contact_shear_[c - contact_pair_.begin()];
+    }
     return Vec<D>::Zero();
   }
   Vec<D> plate_history(std::size_t i) const {
@@ -89,6 +97,10 @@ class DemSimulator final : public Simulator<D> {
   // The same for the pairs of row i of the half list: on_contact(j, k, geometry, v_rel).
   template <class OnContact, class OnApart>
   void for_each_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
+  // Grains i and j touching with separation r_ij, |r_ij|^2 = d2: the contact's geometry and the
+  // velocity of i's surface relative to j's at the contact point.
+  std::pair<ContactGeometry<D>, Vec<D>> contact_between(std::size_t i, std::size_t j,
+                                                        const Vec<D>& r_ij, double d2) const;
 
   Scene scene_;
   Space space_;
@@ -113,16 +125,19 @@ class DemSimulator final : public Simulator<D> {
   std::optional<PlateFace<D>> plate_;
   Law plate_law_;
   std::vector<Vec<D>> plate_shear_;
-  std::vector<Vec<D>> shear_;          // u_t of each listed pair (frictional scenes only)
-  std::vector<std::uint8_t> touching_;  // whether that pair touched at the last evaluation
+  std::vector<std::uint32_t> pair_row_;  // the row i of each listed pair
 
-  // run.threads > 1 only: each listed pair's force and torque shares at the last pass, and
-  // for each grain the pairs in which it is the partner j, by increasing row.
+  // The listed pairs in contact at the last force evaluation, by increasing list index, with
+  // their u_t (frictional scenes only), and the force and torques of that evaluation.
+  std::vector<std::uint32_t> contact_pair_;
+  std::vector<Vec<D>> contact_shear_;
+  std::vector<Vec<D>> contact_force_;
+  std::vector<Spin<D>> contact_torque_i_, contact_torque_j_;
+  // find_contacts' scratch: each thread's stretch of the list, and the history carried over.
+  std::vector<std::vector<std::uint32_t>> found_;
+  std::vector<std::uint32_t> found_pair_;
+  std::vector<Vec<D>> found_shear_;
   int threads_ = 1;
-  std::vector<std::uint8_t> in_contact_;
-  std::vector<Vec<D>> pair_force_;
-  std::vector<Spin<D>> pair_torque_i_, pair_torque_j_;
-  std::vector<std::uint32_t> incoming_first_, incoming_;
 
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;

@@ -1,0 +1,149 @@
+// Part of soft_dem/dem_simulator.cpp (included there, inside namespace granjet::dem, before the
+// explicit instantiations): the force pass, serial or shared among run.threads.
+#pragma once
+
+// Four phases, each a flat loop without unpredictable branches in its body:
+//  1. find_contacts: the listed pairs that touch (a distance test per pair, kept branch-free:
+//     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
+//     of varying length mispredicts);
+//  2. evaluate_contacts: each contact's force and torques from its geometry and history;
+//  3. accumulate_contact_forces: every grain sums its contacts in list order (the rows k < i
+//     that list it, then its own row), one fixed order whatever the thread count, so the
+//     same roundings and the same bits;
+//  4. the plate, then after_row(i) with grain i's total force.
+// Phases 1, 2 and 4 are shared among threads; 3 is a short serial sweep over the contacts.
+// force_ and torque_ must be zero on entry.
+template <int D, bool kFriction, bool kMono, class Space>
+template <class AfterRow>
+[[gnu::flatten]]  // inline the contact law and the grain update into their loops
+double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row) {
+  if (tethered_)
+    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+  find_contacts();
+  const std::size_t first_blown = evaluate_contacts();
+  accumulate_contact_forces();
+  stats_.contacts = static_cast<std::int64_t>(contact_pair_.size());
+
+  const auto n = static_cast<std::int64_t>(p_.size());
+  std::int64_t first_blown_on_plate = n;
+  std::vector<double> thread_largest(threads_, 0.0);
+#pragma omp parallel num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
+  {
+    double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (plate_ && add_plate_force(i, force_[i], torque_[i]))
+        first_blown_on_plate = std::min(first_blown_on_plate, i);
+      largest = sticky_max(largest, after_row(i));
+    }
+    thread_largest[thread_index()] = largest;
+  }
+  // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
+  // row i + 1); the state it integrated is lost anyway.
+  if (first_blown < contact_pair_.size()) {
+    const std::uint32_t k = contact_pair_[first_blown];
+    if (pair_row_[k] <= first_blown_on_plate) throw_overlap(pair_row_[k], pairs_.partner[k]);
+  }
+  if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
+  double largest = 0.0;
+  for (double value : thread_largest) largest = sticky_max(largest, value);
+  // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
+  force_.swap(force_prev_);
+  if constexpr (kFriction) torque_.swap(torque_prev_);
+  return largest;
+}
+
+// Each thread tests a contiguous stretch of the list; the stretches are joined in order. The
+// index of every pair is written and the count advances only for a contact: no branch. A
+// non-finite separation counts as apart; check_finite reports it at the next rebuild.
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::find_contacts() {
+  const std::size_t listed = pairs_.size();
+  const Vec<D>* x = p_.position().data();
+  const double* radius = p_.radius().data();
+  const std::uint32_t* row = pair_row_.data();
+  const std::uint32_t* partner = pairs_.partner.data();
+  found_.resize(threads_);
+  std::vector<std::size_t> count(threads_, 0);
+#pragma omp parallel for num_threads(threads_) schedule(static, 1) if (threads_ > 1)
+  for (int t = 0; t < threads_; ++t) {
+    const std::size_t begin = listed * t / threads_, end = listed * (t + 1) / threads_;
+    std::vector<std::uint32_t>& out = found_[t];
+    if (out.size() < end - begin) out.resize(end - begin);
+    std::uint32_t* slot = out.data();
+    std::size_t touching = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t i = row[k], j = partner[k];
+      const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
+      const double d2 = space_.separation(x[i], x[j]).squaredNorm();
+      slot[touching] = static_cast<std::uint32_t>(k);
+      touching += d2 < reach * reach;
+    }
+    count[t] = touching;
+  }
+  found_pair_.clear();
+  for (int t = 0; t < threads_; ++t)
+    found_pair_.insert(found_pair_.end(), found_[t].begin(), found_[t].begin() + count[t]);
+  if constexpr (kFriction) {
+    // The history goes on while a pair keeps touching and ends when it parts [spec §2]: both
+    // lists increase, so one merge finds each new contact's previous u_t.
+    found_shear_.resize(found_pair_.size());
+    std::size_t before = 0;
+    for (std::size_t c = 0; c < found_pair_.size(); ++c) {
+      while (before < contact_pair_.size() && contact_pair_[before] < found_pair_[c]) ++before;
+      const bool continues =
+          before < contact_pair_.size() && contact_pair_[before] == found_pair_[c];
+      found_shear_[c] = continues ? contact_shear_[before] : Vec<D>::Zero();
+    }
+    contact_shear_.swap(found_shear_);
+  }
+  contact_pair_.swap(found_pair_);
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
+  const auto contacts = static_cast<std::int64_t>(contact_pair_.size());
+  contact_force_.resize(contacts);
+  if constexpr (kFriction) {
+    contact_torque_i_.resize(contacts);
+    contact_torque_j_.resize(contacts);
+  }
+  const auto x = p_.position();
+  const auto radius = p_.radius();
+  std::int64_t first_blown = contacts;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(min : first_blown) \
+    if (threads_ > 1)
+  for (std::int64_t c = 0; c < contacts; ++c) {
+    const std::uint32_t k = contact_pair_[c];
+    const std::uint32_t i = pair_row_[k], j = pairs_.partner[k];
+    const Vec<D> r_ij = space_.separation(x[i], x[j]);
+    const auto [g, v_rel] = contact_between(i, j, r_ij, r_ij.squaredNorm());
+    if (g.overlap > overlap_limit_ * std::min(radius_of(radius, i), radius_of(radius, j)))
+      first_blown = std::min(first_blown, c);
+    Vec<D> no_history = Vec<D>::Zero();
+    Vec<D>& shear = kFriction ? contact_shear_[c] : no_history;
+    const Vec<D> f = law_.force(g, v_rel, shear);
+    contact_force_[c] = f;
+    if constexpr (kFriction) {
+      // Only the tangential part has a lever arm: tau = (contact - centre) x F.
+      const Spin<D> t = Dim<D>::cross(g.n, f);
+      contact_torque_i_[c] = g.lever_i * t;
+      contact_torque_j_[c] = g.lever_j * t;
+    }
+  }
+  return static_cast<std::size_t>(first_blown);
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::accumulate_contact_forces() {
+  for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
+    const std::uint32_t k = contact_pair_[c];
+    const std::uint32_t i = pair_row_[k], j = pairs_.partner[k];
+    force_[i] += contact_force_[c];
+    force_[j] -= contact_force_[c];
+    if constexpr (kFriction) {
+      torque_[i] -= contact_torque_i_[c];
+      torque_[j] -= contact_torque_j_[c];
+    }
+  }
+}
