@@ -53,13 +53,15 @@ struct LinearSpringDashpot {
       shear += dt * v_t;
       shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
       // [3.2] trial tangential force, [3.3] Coulomb: slide at mu_p |F_n| along the trial.
-      Vec<D> f_t = -c.kt * shear - c.eta_t * v_t;
+      // Both outcomes are computed and one is selected: in a jet about half the contacts
+      // slide, in no order a branch predictor could learn.
+      const Vec<D> trial = -c.kt * shear - c.eta_t * v_t;
       const double limit = c.mu * std::abs(f_n);
-      const double f_t2 = f_t.squaredNorm();
-      if (f_t2 > limit * limit) {
-        f_t *= limit / std::sqrt(f_t2);
-        shear = -(f_t + c.eta_t * v_t) * inv_kt;
-      }
+      const double f_t2 = trial.squaredNorm();
+      const bool slides = f_t2 > limit * limit;
+      const Vec<D> sliding = trial * (limit / std::sqrt(f_t2));
+      const Vec<D> f_t = slides ? sliding : trial;
+      shear = slides ? Vec<D>(-(sliding + c.eta_t * v_t) * inv_kt) : shear;
       f += f_t;
     }
     return f;

@@ -230,24 +230,21 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i
       on_apart(k);
       continue;
     }
-    const auto [g, v_rel] = contact_between(i, j, r_ij, d2);
-    on_contact(j, k, g, v_rel);
+    const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius_i, radius_j);
+    on_contact(j, k, g, relative_velocity(i, j, g));
   }
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
-std::pair<ContactGeometry<D>, Vec<D>> DemSimulator<D, kFriction, kMono, Space>::contact_between(
-    std::size_t i, std::size_t j, const Vec<D>& r_ij, double d2) const {
-  const auto radius = p_.radius();
+Vec<D> DemSimulator<D, kFriction, kMono, Space>::relative_velocity(
+    std::size_t i, std::size_t j, const ContactGeometry<D>& g) const {
   const auto v = p_.velocity();
-  const ContactGeometry<D> g =
-      contact_geometry<D>(r_ij, std::sqrt(d2), radius_of(radius, i), radius_of(radius, j));
   Vec<D> v_rel = v[i] - v[j];
   if constexpr (kFriction) {
     const auto w = p_.spin();
     v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
   }
-  return {g, v_rel};
+  return v_rel;
 }
 
 template <int D, bool kFriction, bool kMono, class Space>

@@ -97,10 +97,8 @@ class DemSimulator final : public Simulator<D> {
   // The same for the pairs of row i of the half list: on_contact(j, k, geometry, v_rel).
   template <class OnContact, class OnApart>
   void for_each_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
-  // Grains i and j touching with separation r_ij, |r_ij|^2 = d2: the contact's geometry and the
-  // velocity of i's surface relative to j's at the contact point.
-  std::pair<ContactGeometry<D>, Vec<D>> contact_between(std::size_t i, std::size_t j,
-                                                        const Vec<D>& r_ij, double d2) const;
+  // The velocity of i's surface relative to j's at their contact point.
+  Vec<D> relative_velocity(std::size_t i, std::size_t j, const ContactGeometry<D>& g) const;
 
   Scene scene_;
   Space space_;
@@ -131,6 +129,7 @@ class DemSimulator final : public Simulator<D> {
   // their u_t (frictional scenes only), and the force and torques of that evaluation.
   std::vector<std::uint32_t> contact_pair_;
   std::vector<Vec<D>> contact_shear_;
+  std::vector<ContactGeometry<D>> contact_geometry_;
   std::vector<Vec<D>> contact_force_;
   std::vector<Spin<D>> contact_torque_i_, contact_torque_j_;
   // find_contacts' scratch: each thread's stretch of the list, and the history carried over.

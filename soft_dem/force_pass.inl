@@ -101,8 +101,10 @@ void DemSimulator<D, kFriction, kMono, Space>::find_contacts() {
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
+[[gnu::flatten]]  // the contact law and geometry inlined into the loop
 std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const auto contacts = static_cast<std::int64_t>(contact_pair_.size());
+  contact_geometry_.resize(contacts);
   contact_force_.resize(contacts);
   if constexpr (kFriction) {
     contact_torque_i_.resize(contacts);
@@ -111,24 +113,35 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const auto x = p_.position();
   const auto radius = p_.radius();
   std::int64_t first_blown = contacts;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(min : first_blown) \
-    if (threads_ > 1)
-  for (std::int64_t c = 0; c < contacts; ++c) {
-    const std::uint32_t k = contact_pair_[c];
-    const std::uint32_t i = pair_row_[k], j = pairs_.partner[k];
-    const Vec<D> r_ij = space_.separation(x[i], x[j]);
-    const auto [g, v_rel] = contact_between(i, j, r_ij, r_ij.squaredNorm());
-    if (g.overlap > overlap_limit_ * std::min(radius_of(radius, i), radius_of(radius, j)))
-      first_blown = std::min(first_blown, c);
-    Vec<D> no_history = Vec<D>::Zero();
-    Vec<D>& shear = kFriction ? contact_shear_[c] : no_history;
-    const Vec<D> f = law_.force(g, v_rel, shear);
-    contact_force_[c] = f;
-    if constexpr (kFriction) {
-      // Only the tangential part has a lever arm: tau = (contact - centre) x F.
-      const Spin<D> t = Dim<D>::cross(g.n, f);
-      contact_torque_i_[c] = g.lever_i * t;
-      contact_torque_j_[c] = g.lever_j * t;
+#pragma omp parallel num_threads(threads_) reduction(min : first_blown) if (threads_ > 1)
+  {
+    // Two loops: each body's chain of square root and division is short enough for the
+    // processor to overlap many contacts (one long body stalls on them in turn).
+#pragma omp for schedule(static)
+    for (std::int64_t c = 0; c < contacts; ++c) {
+      const std::uint32_t k = contact_pair_[c];
+      const std::uint32_t i = pair_row_[k], j = pairs_.partner[k];
+      const Vec<D> r_ij = space_.separation(x[i], x[j]);
+      const double radius_i = radius_of(radius, i), radius_j = radius_of(radius, j);
+      contact_geometry_[c] =
+          contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
+      if (contact_geometry_[c].overlap > overlap_limit_ * std::min(radius_i, radius_j))
+        first_blown = std::min(first_blown, c);
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t c = 0; c < contacts; ++c) {
+      const std::uint32_t k = contact_pair_[c];
+      const ContactGeometry<D>& g = contact_geometry_[c];
+      Vec<D> no_history = Vec<D>::Zero();
+      Vec<D>& shear = kFriction ? contact_shear_[c] : no_history;
+      const Vec<D> f = law_.force(g, relative_velocity(pair_row_[k], pairs_.partner[k], g), shear);
+      contact_force_[c] = f;
+      if constexpr (kFriction) {
+        // Only the tangential part has a lever arm: tau = (contact - centre) x F.
+        const Spin<D> t = Dim<D>::cross(g.n, f);
+        contact_torque_i_[c] = g.lever_i * t;
+        contact_torque_j_[c] = g.lever_j * t;
+      }
     }
   }
   return static_cast<std::size_t>(first_blown);
