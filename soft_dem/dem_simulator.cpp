@@ -74,7 +74,7 @@ DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Parti
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
   rebuild();
   if (scene.run.integrator == IntegratorKind::kVelocityVerlet)
-    force_pass([](std::size_t) { return 0.0; });  // F(t0) into force_prev_, for the predictor
+    force_pass([](std::size_t, bool) { return 0.0; });  // F(t0) into force_prev_, for the predictor
   initial_energy_ = energy().total();
 }
 
@@ -130,7 +130,7 @@ template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    add_travel(force_pass([&](std::size_t i) { return advance_ab2(i); }));
+    add_travel(force_pass([&](std::size_t i, bool forced) { return advance_ab2(i, forced); }));
     first_step_ = false;
     ++step_;
   } else {
@@ -148,8 +148,8 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
     ++step_;
     add_travel(speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
-    force_pass([&](std::size_t i) {
-      correct_verlet(i);
+    force_pass([&](std::size_t i, bool forced) {
+      if (forced) correct_verlet(i);  // else F(t) = F(t + dt) = 0: nothing to correct
       return 0.0;
     });
   }
@@ -168,9 +168,14 @@ void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2)
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::advance_ab2(std::size_t i) {
+double DemSimulator<D, kFriction, kMono, Space>::advance_ab2(std::size_t i, bool forced) {
   auto x = p_.position();
   auto v = p_.velocity();
+  if (!forced) {
+    // F(t) = F(t-dt) = 0: v_new = v and the spin stays; the same rounding as below.
+    x[i] += 0.5 * dt_ * (v[i] + v[i]);
+    return v[i].squaredNorm();
+  }
   const double inv_m = p_.inverse_mass()[i];
   const Vec<D>& f_prev = first_step_ ? force_[i] : force_prev_[i];
   const Vec<D> v_new = v[i] + (0.5 * dt_ * inv_m) * (3.0 * force_[i] - f_prev);
@@ -339,6 +344,7 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
   Particles<D>::gather_one(force_prev_, order);
   Particles<D>::gather_one(torque_prev_, order);
   force_.assign(p_.size(), Vec<D>::Zero());  // rebuilds come between force passes
+  forced_.assign(p_.size(), 3);  // unknown after the reordering: assume forces
   torque_.assign(p_.size(), Dim<D>::zero_spin());
   Particles<D>::gather_one(inv_inertia_, order);
   if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, order);

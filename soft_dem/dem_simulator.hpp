@@ -46,11 +46,14 @@ class DemSimulator final : public Simulator<D> {
   void step();
   void add_travel(double largest_speed2);
   // These two return a bound on grain i's squared speed during the step.
-  double advance_ab2(std::size_t i);
+  // forced: whether grain i had a force or torque at this step or the last; if not it flies
+  // straight on, and the update skips its zero forces (most of a jet in flight).
+  double advance_ab2(std::size_t i, bool forced);
   double predict_verlet(std::size_t i);
   void correct_verlet(std::size_t i);
-  // Evaluates all forces at the current state, then calls after_row(i) for every grain with its
-  // total force (see force_pass.inl); returns the largest value after_row returned.
+  // Evaluates all forces at the current state, then calls after_row(i, forced) for every grain
+  // with its total force (see force_pass.inl and advance_ab2); returns the largest value
+  // after_row returned.
   template <class AfterRow>
   double force_pass(AfterRow&& after_row);
   // The listed pairs in contact, in list order, each with its history carried over.
@@ -86,10 +89,11 @@ class DemSimulator final : public Simulator<D> {
   // touches, on_apart() otherwise.
   template <class OnContact, class OnApart>
   void plate_contact_of(std::size_t i, OnContact&& on_contact, OnApart&& on_apart) const;
-  // Adds grain i's plate force and torque (and advances its history); true if it overlaps more
-  // than run.max_overlap allows.
-  // Not inlined: it must not crowd the hot pair loop of scenes without a plate.
-  [[gnu::noinline]] bool add_plate_force(std::size_t i, Vec<D>& force_i, Spin<D>& torque_i);
+  // Adds grain i's plate force and torque (and advances its history); kTooDeep if it overlaps
+  // more than run.max_overlap allows.
+  // Not inlined: it must not crowd the hot grain loop of scenes without a plate.
+  enum class PlateTouch : std::uint8_t { kApart, kTouching, kTooDeep };
+  [[gnu::noinline]] PlateTouch add_plate_force(std::size_t i, Vec<D>& force_i, Spin<D>& torque_i);
   // Calls on_contact(i, j, k, geometry, v_rel) for listed pairs in contact, on_apart(k) for the
   // others (k indexes the pair list).
   template <class OnContact, class OnApart>
@@ -112,6 +116,8 @@ class DemSimulator final : public Simulator<D> {
   std::vector<Vec<D>> force_, force_prev_;  // F being accumulated (zero between passes), F(t-dt)
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
+  // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see advance_ab2).
+  std::vector<std::uint8_t> forced_;
   static constexpr std::uint32_t kRemoved = UINT32_MAX;
   std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region
 

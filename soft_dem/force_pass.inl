@@ -10,7 +10,8 @@
 //  3. accumulate_contact_forces: every grain sums its contacts in list order (the rows k < i
 //     that list it, then its own row), one fixed order whatever the thread count, so the
 //     same roundings and the same bits;
-//  4. the plate, then after_row(i) with grain i's total force.
+//  4. the plate, then after_row(i, forced) with grain i's total force; forced_ says which grains
+//     had a force at this pass or the last (contacts, plate, tether): the others fly free.
 // Phases 1, 2 and 4 are shared among threads; 3 is a short serial sweep over the contacts.
 // force_ and torque_ must be zero on entry.
 template <int D, bool kFriction, bool kMono, class Space>
@@ -19,12 +20,15 @@ template <class AfterRow>
 double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row) {
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+  for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
   find_contacts();
   const std::size_t first_blown = evaluate_contacts();
   accumulate_contact_forces();
   stats_.contacts = static_cast<std::int64_t>(contact_pair_.size());
 
   const auto n = static_cast<std::int64_t>(p_.size());
+  const auto kind = p_.kind();
+  std::uint8_t* forced = forced_.data();
   std::int64_t first_blown_on_plate = n;
   std::vector<double> thread_largest(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
@@ -32,9 +36,13 @@ double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row
     double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
 #pragma omp for schedule(static) nowait
     for (std::int64_t i = 0; i < n; ++i) {
-      if (plate_ && add_plate_force(i, force_[i], torque_[i]))
-        first_blown_on_plate = std::min(first_blown_on_plate, i);
-      largest = sticky_max(largest, after_row(i));
+      if (plate_) {
+        const PlateTouch touch = add_plate_force(i, force_[i], torque_[i]);
+        if (touch != PlateTouch::kApart) forced[i] |= 1;
+        if (touch == PlateTouch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
+      }
+      const bool tethered = tethered_ && kind[i] == GrainKind::kWall;
+      largest = sticky_max(largest, after_row(i, forced[i] != 0 || tethered));
     }
     thread_largest[thread_index()] = largest;
   }
@@ -110,8 +118,17 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
     contact_torque_i_.resize(contacts);
     contact_torque_j_.resize(contacts);
   }
-  const auto x = p_.position();
-  const auto radius = p_.radius();
+  // Raw pointers in locals, as in accumulate_contact_forces.
+  const Vec<D>* x = p_.position().data();
+  const double* radius = p_.radius().data();
+  const std::uint32_t* pair = contact_pair_.data();
+  const std::uint32_t* row = pair_row_.data();
+  const std::uint32_t* partner = pairs_.partner.data();
+  ContactGeometry<D>* geometry = contact_geometry_.data();
+  Vec<D>* shear = contact_shear_.data();
+  Vec<D>* force = contact_force_.data();
+  Spin<D>* torque_i = contact_torque_i_.data();
+  Spin<D>* torque_j = contact_torque_j_.data();
   std::int64_t first_blown = contacts;
 #pragma omp parallel num_threads(threads_) reduction(min : first_blown) if (threads_ > 1)
   {
@@ -119,28 +136,26 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
     // processor to overlap many contacts (one long body stalls on them in turn).
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < contacts; ++c) {
-      const std::uint32_t k = contact_pair_[c];
-      const std::uint32_t i = pair_row_[k], j = pairs_.partner[k];
+      const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
       const Vec<D> r_ij = space_.separation(x[i], x[j]);
-      const double radius_i = radius_of(radius, i), radius_j = radius_of(radius, j);
-      contact_geometry_[c] =
-          contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
-      if (contact_geometry_[c].overlap > overlap_limit_ * std::min(radius_i, radius_j))
+      const double radius_i = kMono ? radius[0] : radius[i];
+      const double radius_j = kMono ? radius[0] : radius[j];
+      geometry[c] = contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
+      if (geometry[c].overlap > overlap_limit_ * std::min(radius_i, radius_j))
         first_blown = std::min(first_blown, c);
     }
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < contacts; ++c) {
-      const std::uint32_t k = contact_pair_[c];
-      const ContactGeometry<D>& g = contact_geometry_[c];
+      const ContactGeometry<D> g = geometry[c];
       Vec<D> no_history = Vec<D>::Zero();
-      Vec<D>& shear = kFriction ? contact_shear_[c] : no_history;
-      const Vec<D> f = law_.force(g, relative_velocity(pair_row_[k], pairs_.partner[k], g), shear);
-      contact_force_[c] = f;
+      const Vec<D> f = law_.force(g, relative_velocity(row[pair[c]], partner[pair[c]], g),
+                                  kFriction ? shear[c] : no_history);
+      force[c] = f;
       if constexpr (kFriction) {
         // Only the tangential part has a lever arm: tau = (contact - centre) x F.
         const Spin<D> t = Dim<D>::cross(g.n, f);
-        contact_torque_i_[c] = g.lever_i * t;
-        contact_torque_j_[c] = g.lever_j * t;
+        torque_i[c] = g.lever_i * t;
+        torque_j[c] = g.lever_j * t;
       }
     }
   }
@@ -149,14 +164,26 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
 
 template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::accumulate_contact_forces() {
+  // Raw pointers in locals: Eigen stores through may-alias vector types, after which any
+  // pointer read from a member would have to be read again.
+  const std::uint32_t* pair = contact_pair_.data();
+  const std::uint32_t* row = pair_row_.data();
+  const std::uint32_t* partner = pairs_.partner.data();
+  const Vec<D>* f = contact_force_.data();
+  const Spin<D>* t_i = contact_torque_i_.data();
+  const Spin<D>* t_j = contact_torque_j_.data();
+  Vec<D>* force = force_.data();
+  Spin<D>* torque = torque_.data();
+  std::uint8_t* forced = forced_.data();
   for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
-    const std::uint32_t k = contact_pair_[c];
-    const std::uint32_t i = pair_row_[k], j = pairs_.partner[k];
-    force_[i] += contact_force_[c];
-    force_[j] -= contact_force_[c];
+    const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
+    forced[i] |= 1;
+    forced[j] |= 1;
+    force[i] += f[c];
+    force[j] -= f[c];
     if constexpr (kFriction) {
-      torque_[i] -= contact_torque_i_[c];
-      torque_[j] -= contact_torque_j_[c];
+      torque[i] -= t_i[c];
+      torque[j] -= t_j[c];
     }
   }
 }

@@ -24,14 +24,15 @@ void DemSimulator<D, kFriction, kMono, Space>::plate_contact_of(std::size_t i,
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
-bool DemSimulator<D, kFriction, kMono, Space>::add_plate_force(std::size_t i, Vec<D>& force_i,
-                                                               Spin<D>& torque_i) {
-  bool blown = false;
+auto DemSimulator<D, kFriction, kMono, Space>::add_plate_force(std::size_t i, Vec<D>& force_i,
+                                                               Spin<D>& torque_i) -> PlateTouch {
+  PlateTouch touch = PlateTouch::kApart;
   Vec<D> no_history = Vec<D>::Zero();
   plate_contact_of(
       i,
       [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-        blown = g.overlap > overlap_limit_ * radius_of(p_.radius(), i);
+        const bool too_deep = g.overlap > overlap_limit_ * radius_of(p_.radius(), i);
+        touch = too_deep ? PlateTouch::kTooDeep : PlateTouch::kTouching;
         Vec<D>& shear = kFriction ? plate_shear_[i] : no_history;
         const Vec<D> f = plate_law_.force(g, v_rel, shear);
         force_i += f;
@@ -40,5 +41,5 @@ bool DemSimulator<D, kFriction, kMono, Space>::add_plate_force(std::size_t i, Ve
       [&] {
         if constexpr (kFriction) plate_shear_[i].setZero();
       });
-  return blown;
+  return touch;
 }
