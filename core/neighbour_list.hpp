@@ -66,32 +66,56 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
 #pragma omp parallel for num_threads(threads) schedule(static, 1) if (threads > 1)
   for (int t = 0; t < threads; ++t) {
     std::vector<std::uint32_t>& partner = partners[t];
-    Pairs ranges;  // the forward cells' grains
-    auto consider = [&](std::uint32_t i, std::uint32_t j) {
-      const double cut = radius[i] + radius[j] + skin;
-      if (space.separation(positions[i], positions[j]).squaredNorm() >= cut * cut ||
-          excluded(i, j))
-        return;
-      if (j > i)
-        partner.push_back(j);
-      else
-        late[t].emplace_back(j, i);
-    };
+    std::size_t count = 0;  // partner[0 .. count) are this chunk's pairs
+    Pairs ranges;           // the forward cells' grains
     for (std::size_t c = cell_begin[t]; c < cell_begin[t + 1]; ++c) {
       const std::uint32_t begin = grid.start(c), end = grid.start(c + 1);
       if (begin == end) continue;
       ranges.clear();
+      std::size_t forward_grains = 0;
       grid.for_each_forward_neighbour(c, [&](std::size_t other) {
-        if (grid.start(other) != grid.start(other + 1))
-          ranges.emplace_back(grid.start(other), grid.start(other + 1));
+        if (grid.start(other) == grid.start(other + 1)) return;
+        ranges.emplace_back(grid.start(other), grid.start(other + 1));
+        forward_grains += grid.start(other + 1) - grid.start(other);
       });
       for (std::uint32_t i = begin; i < end; ++i) {
-        for (std::uint32_t j = i + 1; j < end; ++j) consider(i, j);
-        // In open space forward cells come later in memory, so j > i here too.
+        // Room for every candidate: each is written, and kept only if it is a neighbour, with
+        // no branch (about one candidate in ten is, in no order a predictor could learn).
+        const std::size_t room = count + (end - i - 1) + forward_grains;
+        if (partner.size() < room) partner.resize(2 * room);
+        std::uint32_t* slot = partner.data();
+        auto consider = [&](std::uint32_t j) {
+          const double cut = radius[i] + radius[j] + skin;
+          const bool near =
+              (space.separation(positions[i], positions[j]).squaredNorm() < cut * cut) &
+              !excluded(i, j);
+          slot[count] = j;
+          count += near;
+        };
+        for (std::uint32_t j = i + 1; j < end; ++j) consider(j);
         for (const auto& [first, last] : ranges)
-          for (std::uint32_t j = first; j < last; ++j) consider(i, j);
-        out.first[i + 1] = static_cast<std::uint32_t>(partner.size());  // within the chunk
+          for (std::uint32_t j = first; j < last; ++j) consider(j);
+        out.first[i + 1] = static_cast<std::uint32_t>(count);  // within the chunk
       }
+    }
+    partner.resize(count);
+    if constexpr (Space::kPeriodic) {
+      // Across the boundary a forward cell can come earlier in memory: its pairs (j < i) move
+      // out, to be added at the end of row j.
+      std::size_t kept = 0, row_begin = 0;
+      const std::uint32_t chunk_end = grid.start(cell_begin[t + 1]);
+      for (std::uint32_t i = grid.start(cell_begin[t]); i < chunk_end; ++i) {
+        const std::size_t row_end = out.first[i + 1];
+        for (std::size_t k = row_begin; k < row_end; ++k) {
+          if (partner[k] > i)
+            partner[kept++] = partner[k];
+          else
+            late[t].emplace_back(partner[k], i);
+        }
+        row_begin = row_end;
+        out.first[i + 1] = static_cast<std::uint32_t>(kept);
+      }
+      partner.resize(kept);
     }
   }
   out.partner.clear();
