@@ -136,6 +136,7 @@ class DemSimulator final : public Simulator<D> {
   std::vector<std::uint32_t> contact_pair_;
   std::vector<Vec<D>> contact_shear_;
   std::vector<ContactGeometry<D>> contact_geometry_;
+  std::vector<Vec<D>> contact_velocity_;  // v_rel
   std::vector<Vec<D>> contact_force_;
   std::vector<Spin<D>> contact_torque_i_, contact_torque_j_;
   // find_contacts' scratch: each thread's stretch of the list, and the history carried over.

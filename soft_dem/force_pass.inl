@@ -113,6 +113,7 @@ template <int D, bool kFriction, bool kMono, class Space>
 std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const auto contacts = static_cast<std::int64_t>(contact_pair_.size());
   contact_geometry_.resize(contacts);
+  contact_velocity_.resize(contacts);
   contact_force_.resize(contacts);
   if constexpr (kFriction) {
     contact_torque_i_.resize(contacts);
@@ -125,6 +126,7 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const std::uint32_t* row = pair_row_.data();
   const std::uint32_t* partner = pairs_.partner.data();
   ContactGeometry<D>* geometry = contact_geometry_.data();
+  Vec<D>* v_rel = contact_velocity_.data();
   Vec<D>* shear = contact_shear_.data();
   Vec<D>* force = contact_force_.data();
   Spin<D>* torque_i = contact_torque_i_.data();
@@ -132,8 +134,9 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   std::int64_t first_blown = contacts;
 #pragma omp parallel num_threads(threads_) reduction(min : first_blown) if (threads_ > 1)
   {
-    // Two loops: each body's chain of square root and division is short enough for the
-    // processor to overlap many contacts (one long body stalls on them in turn).
+    // Two loops, geometry and relative velocity, then the law: each body's chain of square
+    // root and division is short enough for the processor to overlap many contacts (one long
+    // body stalls on them in turn).
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < contacts; ++c) {
       const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
@@ -141,6 +144,7 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
       const double radius_i = kMono ? radius[0] : radius[i];
       const double radius_j = kMono ? radius[0] : radius[j];
       geometry[c] = contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
+      v_rel[c] = relative_velocity(i, j, geometry[c]);
       if (geometry[c].overlap > overlap_limit_ * std::min(radius_i, radius_j))
         first_blown = std::min(first_blown, c);
     }
@@ -148,8 +152,7 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
     for (std::int64_t c = 0; c < contacts; ++c) {
       const ContactGeometry<D> g = geometry[c];
       Vec<D> no_history = Vec<D>::Zero();
-      const Vec<D> f = law_.force(g, relative_velocity(row[pair[c]], partner[pair[c]], g),
-                                  kFriction ? shear[c] : no_history);
+      const Vec<D> f = law_.force(g, v_rel[c], kFriction ? shear[c] : no_history);
       force[c] = f;
       if constexpr (kFriction) {
         // Only the tangential part has a lever arm: tau = (contact - centre) x F.
