@@ -121,7 +121,7 @@ void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
 }
 
 // One step from t to t + dt. Adams-Bashforth-2 needs no force after the position update, so
-// forces and integration share one pass over the grains (see force_pass); velocity Verlet
+// the force pass integrates each grain as its last phase (see force_pass.inl); velocity Verlet
 // needs the forces at t + dt before its corrector, so it takes a predictor pass first.
 // The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
 // dt times the largest speed of each step, a bound on every displacement that costs no extra

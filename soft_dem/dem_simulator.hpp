@@ -1,9 +1,10 @@
-// The soft-sphere DEM backend: one half-neighbour-list pair loop with the contact law inlined,
-// Adams-Bashforth-2 [B.21]-[B.24] or velocity Verlet, the tethered or fixed target grains or
-// the flat plate, and removal of grains that leave the region; run.threads shares the pass out
-// with bit-identical results. Frictionless scenes compile without contact history
-// and rotation (kFriction = false); grains all of one size without radius lookups (kMono); the
-// periodic gas scenes use minimum-image separations (Space = PeriodicBox), all others none.
+// The soft-sphere DEM backend: a force pass over a half neighbour list (contacts found, then
+// evaluated, summed and integrated: soft_dem/force_pass.inl), Adams-Bashforth-2 [B.21]-[B.24]
+// or velocity Verlet, the tethered or fixed target grains or the flat plate, and removal of
+// grains that leave the region; run.threads shares the pass out with bit-identical results.
+// Frictionless scenes compile without contact history and rotation (kFriction = false); grains
+// all of one size without radius lookups (kMono); the periodic gas scenes use minimum-image
+// separations (Space = PeriodicBox), all others none.
 #pragma once
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// run.threads changes nothing but the speed: the threaded force pass (pair forces, then every
-// grain sums its own in the serial order) gives the serial pass's results bit for bit, with
+// run.threads changes nothing but the speed: the shared force pass (contacts evaluated apart,
+// then every grain sums its own in list order) gives the serial results bit for bit, with
 // friction and rotation, both integrators, a tethered wall, the plate and a periodic box.
 #include <gtest/gtest.h>
 
