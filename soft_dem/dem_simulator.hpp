@@ -62,7 +62,22 @@ class DemSimulator final : public Simulator<D> {
   // Each contact's force and torques; returns the first with an overlap beyond the limit, or
   // the number of contacts if none.
   std::size_t evaluate_contacts();
-  void accumulate_contact_forces();
+  // Adds contact c's force and torques to its two grains and flags them (see advance_ab2).
+  // Raw pointers: Eigen stores through may-alias vector types, after which a pointer read
+  // from a member would have to be read again.
+  struct ContactSums {
+    const std::uint32_t* pair;
+    const std::uint32_t* row;
+    const std::uint32_t* partner;
+    const Vec<D>* contact_force;
+    const Spin<D>* contact_torque_i;
+    const Spin<D>* contact_torque_j;
+    Vec<D>* force;
+    Spin<D>* torque;
+    std::uint8_t* forced;
+    void add(std::size_t c) const;
+  };
+  ContactSums contact_sums();
   void rebuild();
   void remove_escaped();
   [[noreturn]] void throw_overlap(std::size_t i, std::size_t j) const;

@@ -7,12 +7,13 @@
 //     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
 //     of varying length mispredicts);
 //  2. evaluate_contacts: each contact's force and torques from its geometry and history;
-//  3. accumulate_contact_forces: every grain sums its contacts in list order (the rows k < i
+//  3. ContactSums: every grain sums its contacts in list order (the rows k < i
 //     that list it, then its own row), one fixed order whatever the thread count, so the
 //     same roundings and the same bits;
 //  4. the plate, then after_row(i, forced) with grain i's total force; forced_ says which grains
 //     had a force at this pass or the last (contacts, plate, tether): the others fly free.
-// Phases 1, 2 and 4 are shared among threads; 3 is a short serial sweep over the contacts.
+// Phases 1, 2 and 4 are shared among threads; 3 is a short serial sweep over the contacts
+// (with one thread it runs inside 2, in the same order).
 // force_ and torque_ must be zero on entry.
 template <int D, bool kFriction, bool kMono, class Space>
 template <class AfterRow>
@@ -23,7 +24,10 @@ double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
   find_contacts();
   const std::size_t first_blown = evaluate_contacts();
-  accumulate_contact_forces();
+  if (threads_ > 1) {  // a single thread summed them as it went
+    const ContactSums sums = contact_sums();
+    for (std::size_t c = 0; c < contact_pair_.size(); ++c) sums.add(c);
+  }
   stats_.contacts = static_cast<std::int64_t>(contact_pair_.size());
 
   const auto n = static_cast<std::int64_t>(p_.size());
@@ -119,7 +123,7 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
     contact_torque_i_.resize(contacts);
     contact_torque_j_.resize(contacts);
   }
-  // Raw pointers in locals, as in accumulate_contact_forces.
+  // Raw pointers in locals, as in ContactSums.
   const Vec<D>* x = p_.position().data();
   const double* radius = p_.radius().data();
   const std::uint32_t* pair = contact_pair_.data();
@@ -127,6 +131,8 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const std::uint32_t* partner = pairs_.partner.data();
   ContactGeometry<D>* geometry = contact_geometry_.data();
   Vec<D>* v_rel = contact_velocity_.data();
+  const bool serial = threads_ == 1;
+  const ContactSums sums = contact_sums();
   Vec<D>* shear = contact_shear_.data();
   Vec<D>* force = contact_force_.data();
   Spin<D>* torque_i = contact_torque_i_.data();
@@ -160,33 +166,28 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
         torque_i[c] = g.lever_i * t;
         torque_j[c] = g.lever_j * t;
       }
+      if (serial) sums.add(c);  // in list order already: step 3 done on the way
     }
   }
   return static_cast<std::size_t>(first_blown);
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::accumulate_contact_forces() {
-  // Raw pointers in locals: Eigen stores through may-alias vector types, after which any
-  // pointer read from a member would have to be read again.
-  const std::uint32_t* pair = contact_pair_.data();
-  const std::uint32_t* row = pair_row_.data();
-  const std::uint32_t* partner = pairs_.partner.data();
-  const Vec<D>* f = contact_force_.data();
-  const Spin<D>* t_i = contact_torque_i_.data();
-  const Spin<D>* t_j = contact_torque_j_.data();
-  Vec<D>* force = force_.data();
-  Spin<D>* torque = torque_.data();
-  std::uint8_t* forced = forced_.data();
-  for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
-    const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
-    forced[i] |= 1;
-    forced[j] |= 1;
-    force[i] += f[c];
-    force[j] -= f[c];
-    if constexpr (kFriction) {
-      torque[i] -= t_i[c];
-      torque[j] -= t_j[c];
-    }
+auto DemSimulator<D, kFriction, kMono, Space>::contact_sums() -> ContactSums {
+  return {contact_pair_.data(), pair_row_.data(),         pairs_.partner.data(),
+          contact_force_.data(), contact_torque_i_.data(), contact_torque_j_.data(),
+          force_.data(),         torque_.data(),           forced_.data()};
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::ContactSums::add(std::size_t c) const {
+  const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
+  forced[i] |= 1;
+  forced[j] |= 1;
+  force[i] += contact_force[c];
+  force[j] -= contact_force[c];
+  if constexpr (kFriction) {
+    torque[i] -= contact_torque_i[c];
+    torque[j] -= contact_torque_j[c];
   }
 }
