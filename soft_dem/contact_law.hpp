@@ -4,22 +4,26 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "core/dim.hpp"
 #include "soft_dem/contact_coefficients.hpp"
+#include "soft_dem/lane_vec.hpp"
 
 namespace granjet::dem {
 
 // Geometry of one contact between grains i and j: n points from j to i, the lever arms reach
 // the common contact point on the line of centres (l_i + l_j = |r_i - r_j|), so the tangential
-// force conserves angular momentum exactly.
-template <int D>
-struct ContactGeometry {
-  Vec<D> n;
+// force conserves angular momentum exactly. V is Vec<D>, or LaneVec<D> in the force pass.
+template <class V>
+struct ContactGeometryOf {
+  V n;
   double overlap;
   double lever_i;
   double lever_j;
 };
+template <int D>
+using ContactGeometry = ContactGeometryOf<Vec<D>>;
 
 template <int D>
 inline ContactGeometry<D> contact_geometry(const Vec<D>& r_ij, double dist, double radius_i,
@@ -42,26 +46,28 @@ struct LinearSpringDashpot {
 
   // Force on i from j (j receives its negative). v_rel is the velocity of i's surface relative
   // to j's at the contact point. The tangential history `shear` (u_t) grows by v_t dt and is
-  // reset to the Coulomb limit when sliding.
-  Vec<D> force(const ContactGeometry<D>& g, const Vec<D>& v_rel, Vec<D>& shear) const {
+  // reset to the Coulomb limit when sliding. V is Vec<D>, or LaneVec<D> (the same roundings).
+  template <class V>
+  V force(const ContactGeometryOf<V>& g, const std::type_identity_t<V>& v_rel,
+          std::type_identity_t<V>& shear) const {
     const double v_n = v_rel.dot(g.n);
     // [3.1] normal: F_n = -k_n u_n - eta_n du_n/dt with u_n = -overlap.
     const double f_n = c.kn * g.overlap - c.eta_n * v_n;
-    Vec<D> f = f_n * g.n;
+    V f = f_n * g.n;
     if constexpr (kFriction) {
-      const Vec<D> v_t = v_rel - v_n * g.n;
+      const V v_t = v_rel - v_n * g.n;
       shear += dt * v_t;
       shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
       // [3.2] trial tangential force, [3.3] Coulomb: slide at mu_p |F_n| along the trial.
       // Both outcomes are computed and one is selected: in a jet about half the contacts
       // slide, in no order a branch predictor could learn.
-      const Vec<D> trial = -c.kt * shear - c.eta_t * v_t;
+      const V trial = -c.kt * shear - c.eta_t * v_t;
       const double limit = c.mu * std::abs(f_n);
       const double f_t2 = trial.squaredNorm();
       const bool slides = f_t2 > limit * limit;
-      const Vec<D> sliding = trial * (limit / std::sqrt(f_t2));
-      const Vec<D> f_t = slides ? sliding : trial;
-      shear = slides ? Vec<D>(-(sliding + c.eta_t * v_t) * inv_kt) : shear;
+      const V sliding = trial * (limit / std::sqrt(f_t2));
+      const V f_t = slides ? sliding : trial;
+      shear = slides ? V(-(sliding + c.eta_t * v_t) * inv_kt) : shear;
       f += f_t;
     }
     return f;

@@ -130,7 +130,10 @@ template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    add_travel(force_pass([&](std::size_t i, bool forced) { return advance_ab2(i, forced); }));
+    const Ab2Step ab2 = ab2_step();
+    add_travel(force_pass([&](std::size_t i, bool forced) {
+      return forced ? ab2.advance(i) : ab2.coast(i);
+    }));
     first_step_ = false;
     ++step_;
   } else {
@@ -157,9 +160,6 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
   stats_.particle_steps += free_grains_;
 }
 
-// Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
-// x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
-// F(t-dt) = F(t) [spec §3].
 template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2) {
   travel_ += dt_ * std::sqrt(largest_speed2);
@@ -167,29 +167,44 @@ void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2)
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
+// Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
+// x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
+// F(t-dt) = F(t) [spec §3].
 template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::advance_ab2(std::size_t i, bool forced) {
-  auto x = p_.position();
-  auto v = p_.velocity();
-  if (!forced) {
-    // F(t) = F(t-dt) = 0: v_new = v and the spin stays; the same rounding as below.
-    x[i] += 0.5 * dt_ * (v[i] + v[i]);
-    return v[i].squaredNorm();
-  }
-  const double inv_m = p_.inverse_mass()[i];
-  const Vec<D>& f_prev = first_step_ ? force_[i] : force_prev_[i];
-  const Vec<D> v_new = v[i] + (0.5 * dt_ * inv_m) * (3.0 * force_[i] - f_prev);
-  x[i] += 0.5 * dt_ * (v[i] + v_new);
+auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step {
+  return {p_.position().data(),
+          p_.velocity().data(),
+          p_.spin().data(),
+          force_.data(),
+          first_step_ ? force_.data() : force_prev_.data(),
+          force_prev_.data(),
+          torque_.data(),
+          first_step_ ? torque_.data() : torque_prev_.data(),
+          torque_prev_.data(),
+          p_.inverse_mass().data(),
+          inv_inertia_.data(),
+          0.5 * dt_};
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+double DemSimulator<D, kFriction, kMono, Space>::Ab2Step::advance(std::size_t i) const {
+  const Vec<D> v_new = v[i] + (half_dt * inv_m[i]) * (3.0 * f[i] - f_before[i]);
+  x[i] += half_dt * (v[i] + v_new);
   // The step moved grain i by dt |v + v_new|/2 <= dt max(|v|, |v_new|).
   const double speed2 = std::max(v[i].squaredNorm(), v_new.squaredNorm());
   v[i] = v_new;
-  force_prev_[i].setZero();  // the swap after the pass makes it F(t-dt) and this the next F
+  f_next[i].setZero();  // the swap after the pass makes f F(t-dt) and this the next F
   if constexpr (kFriction) {
-    const Spin<D>& t_prev = first_step_ ? torque_[i] : torque_prev_[i];
-    p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (3.0 * torque_[i] - t_prev);
-    torque_prev_[i] = Dim<D>::zero_spin();
+    w[i] += (half_dt * inv_inertia[i]) * (3.0 * t[i] - t_before[i]);
+    t_next[i] = Dim<D>::zero_spin();
   }
   return speed2;
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+double DemSimulator<D, kFriction, kMono, Space>::Ab2Step::coast(std::size_t i) const {
+  x[i] += half_dt * (v[i] + v[i]);  // v_new = v: the same rounding as advance
+  return v[i].squaredNorm();
 }
 
 // Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
@@ -210,7 +225,7 @@ double DemSimulator<D, kFriction, kMono, Space>::predict_verlet(std::size_t i) {
 template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::correct_verlet(std::size_t i) {
   p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
-  force_prev_[i].setZero();  // see advance_ab2
+  force_prev_[i].setZero();  // see Ab2Step::advance
   if constexpr (kFriction) {
     p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (torque_[i] - torque_prev_[i]);
     torque_prev_[i] = Dim<D>::zero_spin();
@@ -327,7 +342,8 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
   if constexpr (kFriction)
     for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
       const std::uint32_t k = contact_pair_[c];
-      history.push_back({p_.id()[pair_row_[k]], p_.id()[pairs_.partner[k]], contact_shear_[c]});
+      history.push_back({p_.id()[pair_row_[k]], p_.id()[pairs_.partner[k]],
+                         contact_shear_.template get<Vec<D>>(c)});
     }
   remove_escaped();
   double max_radius = 0.0;
@@ -375,11 +391,11 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
   }
   std::sort(carried.begin(), carried.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
-  contact_pair_.clear();
-  contact_shear_.clear();
-  for (const auto& [k, shear] : carried) {
-    contact_pair_.push_back(k);
-    contact_shear_.push_back(shear);
+  contact_pair_.resize(carried.size());
+  contact_shear_.resize(carried.size());
+  for (std::size_t c = 0; c < carried.size(); ++c) {
+    contact_pair_[c] = carried[c].first;
+    contact_shear_.set(c, carried[c].second);
   }
   travel_ = 0.0;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);

@@ -20,6 +20,7 @@
 #include "core/space.hpp"
 #include "core/simulator.hpp"
 #include "soft_dem/contact_law.hpp"
+#include "soft_dem/contact_table.hpp"
 #include "soft_dem/tethered_wall.hpp"
 
 namespace granjet::dem {
@@ -46,14 +47,33 @@ class DemSimulator final : public Simulator<D> {
  private:
   void step();
   void add_travel(double largest_speed2);
-  // These two return a bound on grain i's squared speed during the step.
-  // forced: whether grain i had a force or torque at this step or the last; if not it flies
-  // straight on, and the update skips its zero forces (most of a jet in flight).
-  double advance_ab2(std::size_t i, bool forced);
+  // Adams-Bashforth-2 for one grain, over raw pointers taken once per pass (see ContactSums
+  // for why raw). Both return a bound on the grain's squared speed during the step.
+  struct Ab2Step {
+    Vec<D>* x;
+    Vec<D>* v;
+    Spin<D>* w;
+    const Vec<D>* f;         // F(t)
+    const Vec<D>* f_before;  // F(t - dt)
+    Vec<D>* f_next;          // zeroed for the next pass (see force_pass)
+    const Spin<D>* t;
+    const Spin<D>* t_before;
+    Spin<D>* t_next;
+    const double* inv_m;
+    const double* inv_inertia;
+    double half_dt;
+    // A grain with a force or torque at this step or the last.
+    double advance(std::size_t i) const;
+    // One without: it flies straight on and its zero forces are not touched (most of a jet in
+    // flight).
+    double coast(std::size_t i) const;
+  };
+  Ab2Step ab2_step();
+  // Returns a bound on grain i's squared speed during the step.
   double predict_verlet(std::size_t i);
   void correct_verlet(std::size_t i);
   // Evaluates all forces at the current state, then calls after_row(i, forced) for every grain
-  // with its total force (see force_pass.inl and advance_ab2); returns the largest value
+  // with its total force (see force_pass.inl and Ab2Step); returns the largest value
   // after_row returned.
   template <class AfterRow>
   double force_pass(AfterRow&& after_row);
@@ -62,16 +82,14 @@ class DemSimulator final : public Simulator<D> {
   // Each contact's force and torques; returns the first with an overlap beyond the limit, or
   // the number of contacts if none.
   std::size_t evaluate_contacts();
-  // Adds contact c's force and torques to its two grains and flags them (see advance_ab2).
+  // Adds contact c's force and torques to its two grains and flags them (see Ab2Step).
   // Raw pointers: Eigen stores through may-alias vector types, after which a pointer read
   // from a member would have to be read again.
   struct ContactSums {
     const std::uint32_t* pair;
     const std::uint32_t* row;
     const std::uint32_t* partner;
-    const Vec<D>* contact_force;
-    const Spin<D>* contact_torque_i;
-    const Spin<D>* contact_torque_j;
+    const ContactTable<D, kFriction>* table;
     Vec<D>* force;
     Spin<D>* torque;
     std::uint8_t* forced;
@@ -93,7 +111,8 @@ class DemSimulator final : public Simulator<D> {
   Vec<D> history(std::uint32_t k) const {
     if constexpr (kFriction) {
       const auto c = std::lower_bound(contact_pair_.begin(), contact_pair_.end(), k);
-      if (c != contact_pair_.end() && *c == k) return contact_shear_[c - contact_pair_.begin()];
+      if (c != contact_pair_.end() && *c == k)
+        return contact_shear_.template get<Vec<D>>(c - contact_pair_.begin());
     }
     return Vec<D>::Zero();
   }
@@ -132,8 +151,10 @@ class DemSimulator final : public Simulator<D> {
   std::vector<Vec<D>> force_, force_prev_;  // F being accumulated (zero between passes), F(t-dt)
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
-  // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see advance_ab2).
+  // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see Ab2Step).
   std::vector<std::uint8_t> forced_;
+  // The grains force_pass integrates with their forces, and those it lets coast.
+  std::vector<std::uint32_t> forced_grains_, coasting_grains_;
   static constexpr std::uint32_t kRemoved = UINT32_MAX;
   std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region
 
@@ -148,17 +169,14 @@ class DemSimulator final : public Simulator<D> {
   std::vector<std::uint32_t> pair_row_;  // the row i of each listed pair
 
   // The listed pairs in contact at the last force evaluation, by increasing list index, with
-  // their u_t (frictional scenes only), and the force and torques of that evaluation.
+  // their u_t (frictional scenes only), and the geometry, force and torques of that evaluation.
   std::vector<std::uint32_t> contact_pair_;
-  std::vector<Vec<D>> contact_shear_;
-  std::vector<ContactGeometry<D>> contact_geometry_;
-  std::vector<Vec<D>> contact_velocity_;  // v_rel
-  std::vector<Vec<D>> contact_force_;
-  std::vector<Spin<D>> contact_torque_i_, contact_torque_j_;
+  Columns<D> contact_shear_;
+  ContactTable<D, kFriction> contacts_;
   // find_contacts' scratch: each thread's stretch of the list, and the history carried over.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
-  std::vector<Vec<D>> found_shear_;
+  Columns<D> found_shear_;
   int threads_ = 1;
 
   std::int64_t step_ = 0;

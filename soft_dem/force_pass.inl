@@ -31,23 +31,43 @@ double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row
   stats_.contacts = static_cast<std::int64_t>(contact_pair_.size());
 
   const auto n = static_cast<std::int64_t>(p_.size());
-  const auto kind = p_.kind();
   std::uint8_t* forced = forced_.data();
   std::int64_t first_blown_on_plate = n;
+  if (plate_) {  // after the contacts: the same sum order for any thread count
+#pragma omp parallel for num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const PlateTouch touch = add_plate_force(i, force_[i], torque_[i]);
+      if (touch != PlateTouch::kApart) forced[i] |= 1;
+      if (touch == PlateTouch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
+    }
+  }
+  // The grains with a force at this pass or the last and the coasting ones, two lists in index
+  // order built without a branch: whether a grain in a jet touches another is as good as random,
+  // and one branch per grain on it mispredicts.
+  const GrainKind* kind = p_.kind().data();
+  const unsigned tethered = tethered_;  // the wall grains feel their springs
+  forced_grains_.resize(n);
+  coasting_grains_.resize(n);
+  std::int64_t forced_count = 0, coasting_count = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const bool pushed = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+    forced_grains_[forced_count] = static_cast<std::uint32_t>(i);
+    coasting_grains_[coasting_count] = static_cast<std::uint32_t>(i);
+    forced_count += pushed;
+    coasting_count += !pushed;
+  }
+  const std::uint32_t* pushed = forced_grains_.data();
+  const std::uint32_t* coasting = coasting_grains_.data();
   std::vector<double> thread_largest(threads_, 0.0);
-#pragma omp parallel num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
+#pragma omp parallel num_threads(threads_) if (threads_ > 1)
   {
     double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
 #pragma omp for schedule(static) nowait
-    for (std::int64_t i = 0; i < n; ++i) {
-      if (plate_) {
-        const PlateTouch touch = add_plate_force(i, force_[i], torque_[i]);
-        if (touch != PlateTouch::kApart) forced[i] |= 1;
-        if (touch == PlateTouch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
-      }
-      const bool tethered = tethered_ && kind[i] == GrainKind::kWall;
-      largest = sticky_max(largest, after_row(i, forced[i] != 0 || tethered));
-    }
+    for (std::int64_t k = 0; k < coasting_count; ++k)
+      largest = sticky_max(largest, after_row(coasting[k], false));
+#pragma omp for schedule(static) nowait
+    for (std::int64_t k = 0; k < forced_count; ++k)
+      largest = sticky_max(largest, after_row(pushed[k], true));
     thread_largest[thread_index()] = largest;
   }
   // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
@@ -105,7 +125,7 @@ void DemSimulator<D, kFriction, kMono, Space>::find_contacts() {
       while (before < contact_pair_.size() && contact_pair_[before] < found_pair_[c]) ++before;
       const bool continues =
           before < contact_pair_.size() && contact_pair_[before] == found_pair_[c];
-      found_shear_[c] = continues ? contact_shear_[before] : Vec<D>::Zero();
+      found_shear_.store(c, continues ? contact_shear_.load(before) : LaneVec<D>::Zero());
     }
     contact_shear_.swap(found_shear_);
   }
@@ -116,57 +136,42 @@ template <int D, bool kFriction, bool kMono, class Space>
 [[gnu::flatten]]  // the contact law and geometry inlined into the loop
 std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const auto contacts = static_cast<std::int64_t>(contact_pair_.size());
-  contact_geometry_.resize(contacts);
-  contact_velocity_.resize(contacts);
-  contact_force_.resize(contacts);
-  if constexpr (kFriction) {
-    contact_torque_i_.resize(contacts);
-    contact_torque_j_.resize(contacts);
-  }
+  contacts_.resize(contacts);
   // Raw pointers in locals, as in ContactSums.
   const Vec<D>* x = p_.position().data();
   const double* radius = p_.radius().data();
   const std::uint32_t* pair = contact_pair_.data();
   const std::uint32_t* row = pair_row_.data();
   const std::uint32_t* partner = pairs_.partner.data();
-  ContactGeometry<D>* geometry = contact_geometry_.data();
-  Vec<D>* v_rel = contact_velocity_.data();
   const bool serial = threads_ == 1;
   const ContactSums sums = contact_sums();
-  Vec<D>* shear = contact_shear_.data();
-  Vec<D>* force = contact_force_.data();
-  Spin<D>* torque_i = contact_torque_i_.data();
-  Spin<D>* torque_j = contact_torque_j_.data();
+  // The law runs on blocks of contacts small enough that a single thread sums each block's
+  // forces while they are still in the first-level cache.
+  constexpr std::int64_t kBlock = 32;
+  const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
   std::int64_t first_blown = contacts;
 #pragma omp parallel num_threads(threads_) reduction(min : first_blown) if (threads_ > 1)
   {
-    // Two loops, geometry and relative velocity, then the law: each body's chain of square
-    // root and division is short enough for the processor to overlap many contacts (one long
-    // body stalls on them in turn).
+    // Two loops: geometry and relative velocity (gathered from the grains), then the law on
+    // the contacts' columns, vectorised.
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < contacts; ++c) {
       const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
       const Vec<D> r_ij = space_.separation(x[i], x[j]);
       const double radius_i = kMono ? radius[0] : radius[i];
       const double radius_j = kMono ? radius[0] : radius[j];
-      geometry[c] = contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
-      v_rel[c] = relative_velocity(i, j, geometry[c]);
-      if (geometry[c].overlap > overlap_limit_ * std::min(radius_i, radius_j))
+      const ContactGeometry<D> g =
+          contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
+      contacts_.set(c, g, relative_velocity(i, j, g));
+      if (g.overlap > overlap_limit_ * std::min(radius_i, radius_j))
         first_blown = std::min(first_blown, c);
     }
 #pragma omp for schedule(static)
-    for (std::int64_t c = 0; c < contacts; ++c) {
-      const ContactGeometry<D> g = geometry[c];
-      Vec<D> no_history = Vec<D>::Zero();
-      const Vec<D> f = law_.force(g, v_rel[c], kFriction ? shear[c] : no_history);
-      force[c] = f;
-      if constexpr (kFriction) {
-        // Only the tangential part has a lever arm: tau = (contact - centre) x F.
-        const Spin<D> t = Dim<D>::cross(g.n, f);
-        torque_i[c] = g.lever_i * t;
-        torque_j[c] = g.lever_j * t;
-      }
-      if (serial) sums.add(c);  // in list order already: step 3 done on the way
+    for (std::int64_t block = 0; block < blocks; ++block) {
+      const std::int64_t begin = block * kBlock, end = std::min(contacts, begin + kBlock);
+      contacts_.apply(law_, contact_shear_, begin, end);
+      if (serial)  // in list order already: step 3 done on the way
+        for (std::int64_t c = begin; c < end; ++c) sums.add(c);
     }
   }
   return static_cast<std::size_t>(first_blown);
@@ -174,9 +179,8 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
 
 template <int D, bool kFriction, bool kMono, class Space>
 auto DemSimulator<D, kFriction, kMono, Space>::contact_sums() -> ContactSums {
-  return {contact_pair_.data(), pair_row_.data(),         pairs_.partner.data(),
-          contact_force_.data(), contact_torque_i_.data(), contact_torque_j_.data(),
-          force_.data(),         torque_.data(),           forced_.data()};
+  return {contact_pair_.data(), pair_row_.data(), pairs_.partner.data(), &contacts_,
+          force_.data(),        torque_.data(),   forced_.data()};
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -184,10 +188,11 @@ void DemSimulator<D, kFriction, kMono, Space>::ContactSums::add(std::size_t c) c
   const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
   forced[i] |= 1;
   forced[j] |= 1;
-  force[i] += contact_force[c];
-  force[j] -= contact_force[c];
+  const Vec<D> f = table->force(c);
+  force[i] += f;
+  force[j] -= f;
   if constexpr (kFriction) {
-    torque[i] -= contact_torque_i[c];
-    torque[j] -= contact_torque_j[c];
+    torque[i] -= table->torque_i(c);
+    torque[j] -= table->torque_j(c);
   }
 }

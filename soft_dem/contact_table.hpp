@@ -1,0 +1,119 @@
+// The contacts of one force pass, one array per component (structure of arrays): each
+// contact's geometry and relative velocity in, its force and torques out. The law runs over a
+// stretch of contacts on LaneVec<D> values, a loop GCC vectorises (see lane_vec.hpp); the sums
+// per grain read the results back one contact at a time.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+#include "core/dim.hpp"
+#include "soft_dem/contact_law.hpp"
+#include "soft_dem/lane_vec.hpp"
+
+namespace granjet::dem {
+
+// W arrays of one per-contact quantity (a vector, or with W = 1 a scalar such as a 2D spin).
+template <int W>
+class Columns {
+ public:
+  void resize(std::size_t n) {
+    for (std::vector<double>& col : col_) col.resize(n);
+  }
+  void swap(Columns& other) { col_.swap(other.col_); }
+
+  LaneVec<W> load(std::size_t c) const {
+    LaneVec<W> v;
+    for (int d = 0; d < W; ++d) v.c[d] = col_[d][c];
+    return v;
+  }
+  void store(std::size_t c, const LaneVec<W>& v) {
+    for (int d = 0; d < W; ++d) col_[d][c] = v.c[d];
+  }
+  // As an Eigen vector, or a double when W = 1.
+  template <class V>
+  V get(std::size_t c) const {
+    if constexpr (std::is_arithmetic_v<V>) {
+      return col_[0][c];
+    } else {
+      V v;
+      for (int d = 0; d < W; ++d) v[d] = col_[d][c];
+      return v;
+    }
+  }
+  template <class V>
+  void set(std::size_t c, const V& v) {
+    if constexpr (std::is_arithmetic_v<V>) {
+      col_[0][c] = v;
+    } else {
+      for (int d = 0; d < W; ++d) col_[d][c] = v[d];
+    }
+  }
+
+ private:
+  std::array<std::vector<double>, W> col_;
+};
+
+template <int D, bool kFriction>
+class ContactTable {
+ public:
+  static constexpr int kSpinWidth = D == 3 ? 3 : 1;
+
+  void resize(std::size_t n) {
+    normal_.resize(n);
+    overlap_.resize(n);
+    lever_i_.resize(n);
+    lever_j_.resize(n);
+    v_rel_.resize(n);
+    force_.resize(n);
+    if constexpr (kFriction) {
+      torque_i_.resize(n);
+      torque_j_.resize(n);
+    }
+  }
+  void set(std::size_t c, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+    normal_.set(c, g.n);
+    overlap_[c] = g.overlap;
+    lever_i_[c] = g.lever_i;
+    lever_j_[c] = g.lever_j;
+    v_rel_.set(c, v_rel);
+  }
+
+  // The law [3.1]-[3.3] on contacts [begin, end); shear holds their u_t (frictional laws).
+  template <class Law>
+  void apply(const Law& law, Columns<D>& shear, std::size_t begin, std::size_t end) {
+    // Each contact touches only its own row of every column.
+#pragma GCC ivdep
+    for (std::size_t c = begin; c < end; ++c) {
+      const ContactGeometryOf<LaneVec<D>> g{normal_.load(c), overlap_[c], lever_i_[c],
+                                            lever_j_[c]};
+      LaneVec<D> u_t = LaneVec<D>::Zero();
+      if constexpr (kFriction) u_t = shear.load(c);
+      const LaneVec<D> f = law.force(g, v_rel_.load(c), u_t);
+      force_.store(c, f);
+      if constexpr (kFriction) {
+        shear.store(c, u_t);
+        // Only the tangential part has a lever arm: tau = (contact - centre) x F.
+        const auto t = cross(g.n, f);
+        torque_i_.set(c, g.lever_i * t);
+        torque_j_.set(c, g.lever_j * t);
+      }
+    }
+  }
+
+  double overlap(std::size_t c) const { return overlap_[c]; }
+  Vec<D> force(std::size_t c) const { return force_.template get<Vec<D>>(c); }
+  Spin<D> torque_i(std::size_t c) const { return torque_i_.template get<Spin<D>>(c); }
+  Spin<D> torque_j(std::size_t c) const { return torque_j_.template get<Spin<D>>(c); }
+
+ private:
+  Columns<D> normal_;
+  std::vector<double> overlap_, lever_i_, lever_j_;
+  Columns<D> v_rel_;
+  Columns<D> force_;
+  Columns<kSpinWidth> torque_i_, torque_j_;
+};
+
+}  // namespace granjet::dem

@@ -1,0 +1,54 @@
+// A plain vector of W doubles with the arithmetic the contact law uses, spelled like Eigen's
+// (dot, squaredNorm, Zero) so that the one law [3.1]-[3.3] serves both. The force pass runs
+// the law on these over per-contact columns (soft_dem/contact_table.hpp): GCC vectorises that
+// loop, several contacts per register, but not one over Eigen's fixed-size vectors, whose
+// copies stay in memory and whose own SSE code for 2-vectors blocks its loop vectoriser.
+#pragma once
+
+namespace granjet::dem {
+
+template <int W>
+struct LaneVec {
+  double c[W];
+
+  static LaneVec Zero() { return {}; }
+  double operator[](int d) const { return c[d]; }
+  // Summed in Eigen's order ((x0 y0 + x1 y1) + x2 y2): the same roundings as Vec<D>.
+  double dot(const LaneVec& o) const {
+    double sum = c[0] * o.c[0];
+    for (int d = 1; d < W; ++d) sum += c[d] * o.c[d];
+    return sum;
+  }
+  double squaredNorm() const { return dot(*this); }
+
+  LaneVec& operator+=(const LaneVec& o) {
+    for (int d = 0; d < W; ++d) c[d] += o.c[d];
+    return *this;
+  }
+  LaneVec& operator-=(const LaneVec& o) {
+    for (int d = 0; d < W; ++d) c[d] -= o.c[d];
+    return *this;
+  }
+  friend LaneVec operator+(LaneVec a, const LaneVec& b) { return a += b; }
+  friend LaneVec operator-(LaneVec a, const LaneVec& b) { return a -= b; }
+  friend LaneVec operator-(LaneVec a) {
+    for (int d = 0; d < W; ++d) a.c[d] = -a.c[d];
+    return a;
+  }
+  friend LaneVec operator*(double s, LaneVec a) {
+    for (int d = 0; d < W; ++d) a.c[d] = s * a.c[d];
+    return a;
+  }
+  friend LaneVec operator*(LaneVec a, double s) { return s * a; }
+};
+
+// Cross products as Dim<D>::cross: the out-of-plane component in 2D, Eigen's formula in 3D.
+inline double cross(const LaneVec<2>& a, const LaneVec<2>& b) {
+  return a.c[0] * b.c[1] - a.c[1] * b.c[0];
+}
+inline LaneVec<3> cross(const LaneVec<3>& a, const LaneVec<3>& b) {
+  return {{a.c[1] * b.c[2] - a.c[2] * b.c[1], a.c[2] * b.c[0] - a.c[0] * b.c[2],
+           a.c[0] * b.c[1] - a.c[1] * b.c[0]}};
+}
+
+}  // namespace granjet::dem
