@@ -22,7 +22,7 @@ void BM_ContactLaw(benchmark::State& state) {
     granjet::Vec<D> r;
     for (int d = 0; d < D; ++d) r[d] = g(rng);
     r = r.normalized() * (1.0 - 0.01 * std::abs(g(rng)));
-    geometry.push_back(granjet::dem::contact_geometry<D>(r, r.norm(), 0.5, 0.5));
+    geometry.push_back(granjet::dem::contact_geometry(r, r.norm(), 0.5, 0.5));
     granjet::Vec<D> v;
     for (int d = 0; d < D; ++d) v[d] = 0.3 * g(rng);
     v_rel.push_back(v);

@@ -13,7 +13,11 @@ namespace granjet {
 template <int D>
 struct OpenSpace {
   static constexpr bool kPeriodic = false;
-  Vec<D> separation(const Vec<D>& a, const Vec<D>& b) const { return a - b; }
+  // V: Vec<D>, or the force pass's plain LaneVec<D>.
+  template <class V>
+  V separation(const V& a, const V& b) const {
+    return a - b;
+  }
   void wrap(Vec<D>&) const {}
 };
 
@@ -23,8 +27,9 @@ struct PeriodicBox {
   explicit PeriodicBox(const Vec<D>& edges) : box(edges), inv_box(edges.cwiseInverse()) {}
 
   // a - b shifted by whole box lengths into [-box/2, box/2].
-  Vec<D> separation(const Vec<D>& a, const Vec<D>& b) const {
-    Vec<D> r = a - b;
+  template <class V>
+  V separation(const V& a, const V& b) const {
+    V r = a - b;
     for (int d = 0; d < D; ++d) r[d] -= box[d] * std::nearbyint(r[d] * inv_box[d]);
     return r;
   }

@@ -25,11 +25,24 @@ struct ContactGeometryOf {
 template <int D>
 using ContactGeometry = ContactGeometryOf<Vec<D>>;
 
-template <int D>
-inline ContactGeometry<D> contact_geometry(const Vec<D>& r_ij, double dist, double radius_i,
-                                           double radius_j) {
+template <class V>
+inline ContactGeometryOf<V> contact_geometry(const V& r_ij, double dist, double radius_i,
+                                             double radius_j) {
   const double overlap = radius_i + radius_j - dist;
   return {r_ij * (1.0 / dist), overlap, radius_i - 0.5 * overlap, radius_j - 0.5 * overlap};
+}
+
+inline Vec<2> spin_cross(double w, const Vec<2>& r) { return Dim<2>::spin_cross(w, r); }
+inline Vec<3> spin_cross(const Vec<3>& w, const Vec<3>& r) { return Dim<3>::spin_cross(w, r); }
+
+// The velocity of i's surface relative to j's at their contact point (w: spins, kRotation:
+// whether the grains turn). V is Vec<D> with Dim<D>::Spin, or LaneVec<D> with its spin type.
+template <bool kRotation, class V, class S>
+inline V relative_velocity(const V& v_i, const V& v_j, const S& w_i, const S& w_j,
+                           const ContactGeometryOf<V>& g) {
+  V v_rel = v_i - v_j;
+  if constexpr (kRotation) v_rel -= spin_cross(S(g.lever_i * w_i + g.lever_j * w_j), g.n);
+  return v_rel;
 }
 
 template <int D, bool kFriction>

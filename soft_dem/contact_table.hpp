@@ -73,7 +73,8 @@ class ContactTable {
       torque_j_.resize(n);
     }
   }
-  void set(std::size_t c, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+  template <class V>  // Vec<D> or LaneVec<D>
+  void set(std::size_t c, const ContactGeometryOf<V>& g, const V& v_rel) {
     normal_.set(c, g.n);
     overlap_[c] = g.overlap;
     lever_i_[c] = g.lever_i;

@@ -250,7 +250,7 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i
       on_apart(k);
       continue;
     }
-    const ContactGeometry<D> g = contact_geometry<D>(r_ij, std::sqrt(d2), radius_i, radius_j);
+    const ContactGeometry<D> g = contact_geometry(r_ij, std::sqrt(d2), radius_i, radius_j);
     on_contact(j, k, g, relative_velocity(i, j, g));
   }
 }
@@ -259,12 +259,8 @@ template <int D, bool kFriction, bool kMono, class Space>
 Vec<D> DemSimulator<D, kFriction, kMono, Space>::relative_velocity(
     std::size_t i, std::size_t j, const ContactGeometry<D>& g) const {
   const auto v = p_.velocity();
-  Vec<D> v_rel = v[i] - v[j];
-  if constexpr (kFriction) {
-    const auto w = p_.spin();
-    v_rel -= Dim<D>::spin_cross(g.lever_i * w[i] + g.lever_j * w[j], g.n);
-  }
-  return v_rel;
+  const auto w = p_.spin();
+  return dem::relative_velocity<kFriction>(v[i], v[j], w[i], w[j], g);
 }
 
 template <int D, bool kFriction, bool kMono, class Space>

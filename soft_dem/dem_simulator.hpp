@@ -82,13 +82,15 @@ class DemSimulator final : public Simulator<D> {
   // Each contact's force and torques; returns the first with an overlap beyond the limit, or
   // the number of contacts if none.
   std::size_t evaluate_contacts();
+  // Geometry and relative velocity of contacts [begin, end) into contacts_; whether any
+  // overlaps beyond the limit.
+  bool gather_contacts(std::int64_t begin, std::int64_t end);
   // Adds contact c's force and torques to its two grains and flags them (see Ab2Step).
   // Raw pointers: Eigen stores through may-alias vector types, after which a pointer read
   // from a member would have to be read again.
   struct ContactSums {
-    const std::uint32_t* pair;
-    const std::uint32_t* row;
-    const std::uint32_t* partner;
+    const std::int64_t* grain_i;
+    const std::int64_t* grain_j;
     const ContactTable<D, kFriction>* table;
     Vec<D>* force;
     Spin<D>* torque;
@@ -173,6 +175,7 @@ class DemSimulator final : public Simulator<D> {
   std::vector<std::uint32_t> contact_pair_;
   Columns<D> contact_shear_;
   ContactTable<D, kFriction> contacts_;
+  std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
   // find_contacts' scratch: each thread's stretch of the list, and the history carried over.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;

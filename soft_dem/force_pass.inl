@@ -137,55 +137,91 @@ template <int D, bool kFriction, bool kMono, class Space>
 std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
   const auto contacts = static_cast<std::int64_t>(contact_pair_.size());
   contacts_.resize(contacts);
-  // Raw pointers in locals, as in ContactSums.
-  const Vec<D>* x = p_.position().data();
-  const double* radius = p_.radius().data();
+  contact_i_.resize(contacts);
+  contact_j_.resize(contacts);
   const std::uint32_t* pair = contact_pair_.data();
   const std::uint32_t* row = pair_row_.data();
   const std::uint32_t* partner = pairs_.partner.data();
+  std::int64_t* grain_i = contact_i_.data();
+  std::int64_t* grain_j = contact_j_.data();
   const bool serial = threads_ == 1;
   const ContactSums sums = contact_sums();
-  // The law runs on blocks of contacts small enough that a single thread sums each block's
-  // forces while they are still in the first-level cache.
+  // Blocks of contacts small enough that their columns stay in the first-level cache from the
+  // geometry through the law to a single thread's sums.
   constexpr std::int64_t kBlock = 32;
   const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
-  std::int64_t first_blown = contacts;
-#pragma omp parallel num_threads(threads_) reduction(min : first_blown) if (threads_ > 1)
+  bool any_too_deep = false;  // the first such contact is looked for only then
+#pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
   {
-    // Two loops: geometry and relative velocity (gathered from the grains), then the law on
-    // the contacts' columns, vectorised.
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < contacts; ++c) {
-      const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
-      const Vec<D> r_ij = space_.separation(x[i], x[j]);
-      const double radius_i = kMono ? radius[0] : radius[i];
-      const double radius_j = kMono ? radius[0] : radius[j];
-      const ContactGeometry<D> g =
-          contact_geometry<D>(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
-      contacts_.set(c, g, relative_velocity(i, j, g));
-      if (g.overlap > overlap_limit_ * std::min(radius_i, radius_j))
-        first_blown = std::min(first_blown, c);
+      grain_i[c] = row[pair[c]];
+      grain_j[c] = partner[pair[c]];
     }
 #pragma omp for schedule(static)
     for (std::int64_t block = 0; block < blocks; ++block) {
       const std::int64_t begin = block * kBlock, end = std::min(contacts, begin + kBlock);
+      any_too_deep |= gather_contacts(begin, end);
       contacts_.apply(law_, contact_shear_, begin, end);
       if (serial)  // in list order already: step 3 done on the way
         for (std::int64_t c = begin; c < end; ++c) sums.add(c);
     }
   }
-  return static_cast<std::size_t>(first_blown);
+  if (any_too_deep)
+    for (std::int64_t c = 0; c < contacts; ++c) {
+      const double radius_i = radius_of(p_.radius(), grain_i[c]);
+      const double radius_j = radius_of(p_.radius(), grain_j[c]);
+      if (contacts_.overlap(c) > overlap_limit_ * std::min(radius_i, radius_j)) return c;
+    }
+  return contacts;
+}
+
+// A plain loop inside the OpenMP loop over blocks: GCC vectorises gathers there, not in an
+// OpenMP loop itself. The grains' vectors are read as plain doubles (see LaneVec::at).
+template <int D, bool kFriction, bool kMono, class Space>
+bool DemSimulator<D, kFriction, kMono, Space>::gather_contacts(std::int64_t begin,
+                                                              std::int64_t end) {
+  static_assert(sizeof(Vec<D>) == D * sizeof(double) && sizeof(Spin<D>) % sizeof(double) == 0);
+  constexpr int kSpinWidth = sizeof(Spin<D>) / sizeof(double);
+  using Lane = LaneVec<D>;
+  const auto spin_at = [](const double* base, std::int64_t k) {
+    if constexpr (kSpinWidth == 1) return base[k];  // 2D: a scalar
+    else return LaneVec<kSpinWidth>::at(base, k);
+  };
+  const double* x = p_.position().data()->data();
+  const double* v = p_.velocity().data()->data();
+  const double* w = reinterpret_cast<const double*>(p_.spin().data());
+  const double* radius = p_.radius().data();
+  const std::int64_t* grain_i = contact_i_.data();
+  const std::int64_t* grain_j = contact_j_.data();
+  // An or as wide as a double, which the vectoriser keeps in lanes (a bool or a first index
+  // stops it).
+  std::int64_t too_deep = 0;
+#pragma GCC ivdep
+  for (std::int64_t c = begin; c < end; ++c) {
+    const std::int64_t i = grain_i[c], j = grain_j[c];
+    const Lane r_ij = space_.separation(Lane::at(x, i), Lane::at(x, j));
+    const double radius_i = kMono ? radius[0] : radius[i];
+    const double radius_j = kMono ? radius[0] : radius[j];
+    const ContactGeometryOf<Lane> g =
+        contact_geometry(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
+    contacts_.set(c, g,
+                  dem::relative_velocity<kFriction>(Lane::at(v, i), Lane::at(v, j),
+                                                    spin_at(w, i), spin_at(w, j), g));
+    too_deep |= std::int64_t{g.overlap > overlap_limit_ * std::min(radius_i, radius_j)};
+  }
+  return too_deep != 0;
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
 auto DemSimulator<D, kFriction, kMono, Space>::contact_sums() -> ContactSums {
-  return {contact_pair_.data(), pair_row_.data(), pairs_.partner.data(), &contacts_,
-          force_.data(),        torque_.data(),   forced_.data()};
+  return {contact_i_.data(), contact_j_.data(), &contacts_, force_.data(), torque_.data(),
+          forced_.data()};
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::ContactSums::add(std::size_t c) const {
-  const std::uint32_t i = row[pair[c]], j = partner[pair[c]];
+  const std::int64_t i = grain_i[c], j = grain_j[c];
   forced[i] |= 1;
   forced[j] |= 1;
   const Vec<D> f = table->force(c);
