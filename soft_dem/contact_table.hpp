@@ -15,6 +15,25 @@
 
 namespace granjet::dem {
 
+// Read-only raw pointers to W columns, for loops that also store through Eigen: its stores
+// may alias anything, so reads through the owning vectors would reload their pointers.
+template <int W>
+struct ColumnsView {
+  std::array<const double*, W> col;
+
+  // As an Eigen vector, or a double when W = 1.
+  template <class V>
+  V get(std::size_t c) const {
+    if constexpr (std::is_arithmetic_v<V>) {
+      return col[0][c];
+    } else {
+      V v;
+      for (int d = 0; d < W; ++d) v[d] = col[d][c];
+      return v;
+    }
+  }
+};
+
 // W arrays of one per-contact quantity (a vector, or with W = 1 a scalar such as a 2D spin).
 template <int W>
 class Columns {
@@ -32,17 +51,16 @@ class Columns {
   void store(std::size_t c, const LaneVec<W>& v) {
     for (int d = 0; d < W; ++d) col_[d][c] = v.c[d];
   }
-  // As an Eigen vector, or a double when W = 1.
+  ColumnsView<W> view() const {
+    ColumnsView<W> v;
+    for (int d = 0; d < W; ++d) v.col[d] = col_[d].data();
+    return v;
+  }
   template <class V>
   V get(std::size_t c) const {
-    if constexpr (std::is_arithmetic_v<V>) {
-      return col_[0][c];
-    } else {
-      V v;
-      for (int d = 0; d < W; ++d) v[d] = col_[d][c];
-      return v;
-    }
+    return view().template get<V>(c);
   }
+  // From an Eigen vector, a LaneVec, or a double when W = 1.
   template <class V>
   void set(std::size_t c, const V& v) {
     if constexpr (std::is_arithmetic_v<V>) {
@@ -105,9 +123,10 @@ class ContactTable {
   }
 
   double overlap(std::size_t c) const { return overlap_[c]; }
-  Vec<D> force(std::size_t c) const { return force_.template get<Vec<D>>(c); }
-  Spin<D> torque_i(std::size_t c) const { return torque_i_.template get<Spin<D>>(c); }
-  Spin<D> torque_j(std::size_t c) const { return torque_j_.template get<Spin<D>>(c); }
+  // The law's results: force on i, and the torques to subtract from i's and j's.
+  ColumnsView<D> forces() const { return force_.view(); }
+  ColumnsView<kSpinWidth> torques_i() const { return torque_i_.view(); }
+  ColumnsView<kSpinWidth> torques_j() const { return torque_j_.view(); }
 
  private:
   Columns<D> normal_;

@@ -91,7 +91,8 @@ class DemSimulator final : public Simulator<D> {
   struct ContactSums {
     const std::int64_t* grain_i;
     const std::int64_t* grain_j;
-    const ContactTable<D, kFriction>* table;
+    ColumnsView<D> contact_force;
+    ColumnsView<ContactTable<D, kFriction>::kSpinWidth> contact_torque_i, contact_torque_j;
     Vec<D>* force;
     Spin<D>* torque;
     std::uint8_t* forced;

@@ -215,8 +215,9 @@ bool DemSimulator<D, kFriction, kMono, Space>::gather_contacts(std::int64_t begi
 
 template <int D, bool kFriction, bool kMono, class Space>
 auto DemSimulator<D, kFriction, kMono, Space>::contact_sums() -> ContactSums {
-  return {contact_i_.data(), contact_j_.data(), &contacts_, force_.data(), torque_.data(),
-          forced_.data()};
+  return {contact_i_.data(),     contact_j_.data(),     contacts_.forces(),
+          contacts_.torques_i(), contacts_.torques_j(), force_.data(),
+          torque_.data(),        forced_.data()};
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -224,11 +225,11 @@ void DemSimulator<D, kFriction, kMono, Space>::ContactSums::add(std::size_t c) c
   const std::int64_t i = grain_i[c], j = grain_j[c];
   forced[i] |= 1;
   forced[j] |= 1;
-  const Vec<D> f = table->force(c);
+  const Vec<D> f = contact_force.template get<Vec<D>>(c);
   force[i] += f;
   force[j] -= f;
   if constexpr (kFriction) {
-    torque[i] -= table->torque_i(c);
-    torque[j] -= table->torque_j(c);
+    torque[i] -= contact_torque_i.template get<Spin<D>>(c);
+    torque[j] -= contact_torque_j.template get<Spin<D>>(c);
   }
 }
