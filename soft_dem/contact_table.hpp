@@ -102,6 +102,7 @@ class ContactTable {
 
   // The law [3.1]-[3.3] on contacts [begin, end); shear holds their u_t (frictional laws).
   template <class Law>
+  [[gnu::flatten]]  // the law inlined: only then is the loop vectorised
   void apply(const Law& law, Columns<D>& shear, std::size_t begin, std::size_t end) {
     // Each contact touches only its own row of every column.
 #pragma GCC ivdep
