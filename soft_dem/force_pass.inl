@@ -6,14 +6,16 @@
 //  1. find_contacts: the listed pairs that touch (a distance test per pair, kept branch-free:
 //     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
 //     of varying length mispredicts);
-//  2. evaluate_contacts: each contact's force and torques from its geometry and history;
+//  2. evaluate_contacts: each contact's force and torques from its geometry and history, in
+//     blocks of contacts held as columns (contacts_), two vectorised loops per block;
 //  3. ContactSums: every grain sums its contacts in list order (the rows k < i
 //     that list it, then its own row), one fixed order whatever the thread count, so the
 //     same roundings and the same bits;
 //  4. the plate, then after_row(i, forced) with grain i's total force; forced_ says which grains
 //     had a force at this pass or the last (contacts, plate, tether): the others fly free.
+//     The two kinds are listed apart first, and each list is updated in its own loop.
 // Phases 1, 2 and 4 are shared among threads; 3 is a short serial sweep over the contacts
-// (with one thread it runs inside 2, in the same order).
+// (with one thread it runs inside 2, block by block, in the same order).
 // force_ and torque_ must be zero on entry.
 template <int D, bool kFriction, bool kMono, class Space>
 template <class AfterRow>
