@@ -36,7 +36,7 @@ inline Vec<2> spin_cross(double w, const Vec<2>& r) { return Dim<2>::spin_cross(
 inline Vec<3> spin_cross(const Vec<3>& w, const Vec<3>& r) { return Dim<3>::spin_cross(w, r); }
 
 // The velocity of i's surface relative to j's at their contact point (w: spins, kRotation:
-// whether the grains turn). V is Vec<D> with Dim<D>::Spin, or LaneVec<D> with its spin type.
+// whether the grains turn): du_t/dt of [3.2] with its rotation term, and du_n/dt of [3.1]. V is Vec<D> with Dim<D>::Spin, or LaneVec<D> with its spin type.
 template <bool kRotation, class V, class S>
 inline V relative_velocity(const V& v_i, const V& v_j, const S& w_i, const S& w_j,
                            const ContactGeometryOf<V>& g) {

@@ -183,8 +183,9 @@ std::size_t DemSimulator<D, kFriction, kMono, Space>::evaluate_contacts() {
 template <int D, bool kFriction, bool kMono, class Space>
 bool DemSimulator<D, kFriction, kMono, Space>::gather_contacts(std::int64_t begin,
                                                               std::int64_t end) {
-  static_assert(sizeof(Vec<D>) == D * sizeof(double) && sizeof(Spin<D>) % sizeof(double) == 0);
-  constexpr int kSpinWidth = sizeof(Spin<D>) / sizeof(double);
+  constexpr int kSpinWidth = ContactTable<D, kFriction>::kSpinWidth;
+  static_assert(sizeof(Vec<D>) == D * sizeof(double) &&
+                sizeof(Spin<D>) == kSpinWidth * sizeof(double));
   using Lane = LaneVec<D>;
   const auto spin_at = [](const double* base, std::int64_t k) {
     if constexpr (kSpinWidth == 1) return base[k];  // 2D: a scalar
