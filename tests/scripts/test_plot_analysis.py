@@ -12,8 +12,6 @@ converged. Prints "N passed, M failed" last; exit code 0 only when all pass.
 import os
 import subprocess
 import sys
-import tempfile
-import traceback
 
 import h5py
 import matplotlib.pyplot as plt
@@ -24,6 +22,7 @@ SCRIPT = os.path.join(ROOT, "scripts", "plot_analysis.py")
 sys.dont_write_bytecode = True  # no __pycache__ in scripts/
 sys.path.insert(0, os.path.dirname(SCRIPT))
 import plot_analysis  # noqa: E402  (its formulas, to make data that follow the laws)
+import script_tests  # noqa: E402
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -294,21 +293,5 @@ def test_formulas_match_the_spec(tmp):
     assert abs(f.friction_6_9(1e9, 0.2, 0.6, 0.3) - 0.6) < 1e-6  # saturates at mu_max
 
 
-def main():
-    tests = [(name, fn) for name, fn in globals().items() if name.startswith("test_")]
-    passed = failed = 0
-    for name, fn in tests:
-        with tempfile.TemporaryDirectory(prefix="granjet_plot_") as tmp:
-            try:
-                fn(tmp)
-                passed += 1
-                print(f"PASS {name}")
-            except Exception:  # noqa: BLE001 - report every failure and go on
-                failed += 1
-                print(f"FAIL {name}\n{traceback.format_exc()}")
-    print(f"{passed} passed, {failed} failed")
-    return 0 if failed == 0 else 1
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(script_tests.run(globals()))
