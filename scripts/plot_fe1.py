@@ -2,7 +2,7 @@
 """Figure FE.1 (spec §7) from the stability test's output: T_g(t) in layer (a), -dy < y < 0,
 of the 2D jet at mu_p = 1.0 for several contact times t_c.
 
-    GRANJET_STABILITY_FE1_FULL=1 ctest --test-dir build -R Fe1 -V > fe1.log
+    GRANJET_STABILITY_FE1_FULL=1 build/tests/granjet_stability_tests --gtest_filter="Fe1*" > fe1.log
     /usr/bin/python3 scripts/plot_fe1.py fe1.log [--seed N] [--out docs/fe1_layer_a_temperature.png]
 
 (LOG may be - for standard input.) Reads the lines

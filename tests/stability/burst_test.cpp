@@ -7,8 +7,8 @@
 // Measured on a jet smaller than the study's (strip 20 d, 2000 grains, three seeds, window
 // 30 <= t <= 100; the stiff run costs 1/t_c steps per unit time), or at the study's size with
 // GRANJET_STABILITY_FE1_FULL=1 in the environment (strip 30 d, 8000 grains, window
-// 180 <= t <= 300, the spec's ensemble of 10 seeds: about 15 minutes of CPU, 80% of it
-// t_c = 0.01). T_g(t) is sampled every 0.25:
+// 180 <= t <= 300, the spec's ensemble of 10 seeds: about 17 minutes on one core, three
+// quarters of it t_c = 0.01). T_g(t) is sampled every 0.25:
 // T_g = sum m |v - <v>|^2 / (2 N) over the grains whose centres lie in layer (a)
 // (0 < x - wall surface <= 5 d) and -dy < y < 0 (dy = R_tar/5, as in spec §6).
 //
