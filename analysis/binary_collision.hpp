@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cmath>
-#include <optional>
 
 #include "core/particles.hpp"
 
@@ -21,17 +20,19 @@ class BinaryCollisionTracker {
     const Vec<D> n = r12 / dist;  // from grain 0 to grain 1
     const Vec<D> v12 = p.velocity()[index(p, 0)] - p.velocity()[index(p, 1)];
     if (have_previous_) {
-      if (!onset_ && previous_gap_ > 0.0 && gap <= 0.0) {
+      if (!touched_ && previous_gap_ > 0.0 && gap <= 0.0) {
+        touched_ = true;
         onset_ = crossing(t, gap);
         approach_ = previous_v12_.dot(previous_n_);
-      } else if (onset_ && !end_ && previous_gap_ <= 0.0 && gap > 0.0) {
+      } else if (touched_ && !parted_ && previous_gap_ <= 0.0 && gap > 0.0) {
+        parted_ = true;
         end_ = crossing(t, gap);
         separation_normal_ = n;
       }
     }
     // After separation the relative velocity still settles for a step or two (the multistep
     // integrator remembers the last contact force); keep the latest.
-    if (end_) departure_ = v12.dot(separation_normal_);
+    if (parted_) departure_ = v12.dot(separation_normal_);
     have_previous_ = true;
     previous_t_ = t;
     previous_gap_ = gap;
@@ -39,10 +40,10 @@ class BinaryCollisionTracker {
     previous_v12_ = v12;
   }
 
-  bool complete() const { return end_.has_value(); }
-  // e = -(v12 . n) after / (v12 . n) before.
+  bool complete() const { return parted_; }
+  // Both only once complete(). e = -(v12 . n) after / (v12 . n) before.
   double restitution() const { return -departure_ / approach_; }
-  double contact_time() const { return end_.value_or(0.0) - onset_.value_or(0.0); }
+  double contact_time() const { return end_ - onset_; }
 
  private:
   static std::size_t index(const Particles<D>& p, GrainId id) { return p.id()[0] == id ? 0 : 1; }
@@ -55,8 +56,10 @@ class BinaryCollisionTracker {
   double previous_gap_ = 0.0;
   Vec<D> previous_n_ = Vec<D>::Zero();
   Vec<D> previous_v12_ = Vec<D>::Zero();
-  std::optional<double> onset_;
-  std::optional<double> end_;
+  bool touched_ = false;  // the gap has closed: onset_ and approach_ are set
+  bool parted_ = false;   // and opened again: end_ and separation_normal_ are set
+  double onset_ = 0.0;
+  double end_ = 0.0;
   Vec<D> separation_normal_ = Vec<D>::Zero();
   double approach_ = 0.0;
   double departure_ = 0.0;
