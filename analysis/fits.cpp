@@ -111,7 +111,7 @@ std::vector<double> log_grid(double lo, double hi, int n) {
   return grid;
 }
 
-// Columns [1, x^e] for the power laws [6.2], [6.3], [6.10].
+// Columns [1, x^e] for the power laws [6.2], [6.3].
 Eigen::MatrixXd power_basis(const Eigen::VectorXd& x, double exponent) {
   Eigen::MatrixXd a(x.size(), 2);
   a.col(0).setOnes();
@@ -202,17 +202,22 @@ FitResult fit_mu_saturating(std::span<const double> i_s, std::span<const double>
 }
 
 FitResult fit_mu_power(std::span<const double> i_s, std::span<const double> mu) {
+  // The study fits [6.10] "assuming mu_s = 0" (spec §6): two free parameters, b and beta.
   const Points d = finite_points(i_s, mu, true);
   const FitModel model = [](double x, const Eigen::VectorXd& p) {
-    return friction_power(x, p[0], p[1], p[2]);
+    return friction_power(x, 0.0, p[0], p[1]);
   };
-  Eigen::VectorXd p0(3);
-  p0 << 0.0, 0.0, 1.0;
+  Eigen::VectorXd p0(2);
+  p0 << 0.0, 1.0;
   if (d.x.size() >= 2) {
-    const auto [beta, c] = linear_start(d, log_grid(0.05, 5.0, 41), power_basis);
-    p0 << c[0], c[1], beta;
+    // For a fixed beta, b I_s^beta is linear in b.
+    const auto [beta, c] =
+        linear_start(d, log_grid(0.05, 5.0, 41), [](const Eigen::VectorXd& x, double exponent) {
+          return Eigen::MatrixXd(x.array().pow(exponent).matrix());
+        });
+    p0 << c[0], beta;
   }
-  return fit_points(model, d, p0, {"mu_s", "b", "beta"}, "6.10");
+  return fit_points(model, d, p0, {"b", "beta"}, "6.10");
 }
 
 FitResult fit_mu_linear(std::span<const double> i, std::span<const double> mu) {

@@ -49,7 +49,7 @@ FitResult fit_phi_of_i_t(std::span<const double> i_t, std::span<const double> ph
 FitResult fit_phi_of_i_s(std::span<const double> i_s, std::span<const double> phi);
 // [6.9] mu* = mu_s + (mu_max - mu_s)/(1 + I_0/I_s): parameters mu_s, mu_max, I_0.
 FitResult fit_mu_saturating(std::span<const double> i_s, std::span<const double> mu);
-// [6.10] mu* = mu_s + b I_s^beta: parameters mu_s, b, beta.
+// [6.10] mu* = mu_s + b I_s^beta with mu_s = 0, as the study fits it: parameters b, beta.
 FitResult fit_mu_power(std::span<const double> i_s, std::span<const double> mu);
 // 3D mu* = a I through the origin: parameter a.
 FitResult fit_mu_linear(std::span<const double> i, std::span<const double> mu);

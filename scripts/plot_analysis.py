@@ -57,9 +57,9 @@ def friction_6_9(i_s, mu_s, mu_max, i_0):
     return mu_s + (mu_max - mu_s) / (1 + i_0 / np.asarray(i_s))
 
 
-def friction_6_10(i_s, mu_s, b, beta):
-    """[6.10] mu* = mu_s + b I_s^beta."""
-    return mu_s + b * np.asarray(i_s) ** beta
+def friction_6_10(i_s, b, beta):
+    """[6.10] mu* = mu_s + b I_s^beta with mu_s = 0, as the study fits it (spec §6)."""
+    return b * np.asarray(i_s) ** beta
 
 
 def friction_linear_3d(i, a):

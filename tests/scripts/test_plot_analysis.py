@@ -182,9 +182,10 @@ def jet2d(path, frames_only=False):
     fits = {"6.2": (["phi_T", "a_T", "alpha_T"], [0.82, 0.5, 1.5], points),
             "6.3": (["phi_s", "a_s", "alpha_s"], [0.8, 0.3, 1.2], points),
             "6.9": (["mu_s", "mu_max", "I_0"], [0.25, 0.6, 0.3], points),
-            "6.10": (["mu_s", "b", "beta"], [0.2, 0.5, 0.8], points)}
+            "6.10": (["b", "beta"], [0.5, 0.8], points)}  # mu_s = 0 fixed (fits.cpp)
     if frames_only:  # fits.cpp returns the initial guess, unfitted
-        fits = {law: (names, [0.0, 0.0, 2.0], 0) for law, (names, _, _) in fits.items()}
+        fits = {law: (names, [0.0] * (len(names) - 1) + [2.0], 0)
+                for law, (names, _, _) in fits.items()}
     write_analysis(path, 2, f, glob, fits, drop=("T_g",) if frames_only else ())
 
 
@@ -291,6 +292,10 @@ def test_formulas_match_the_spec(tmp):
     assert np.isinf(f.chi_5_3(0.64))
     assert abs(f.pressure_ratio_5_2(0.0, 0.75) - 1.0) < 1e-12
     assert abs(f.friction_6_9(1e9, 0.2, 0.6, 0.3) - 0.6) < 1e-6  # saturates at mu_max
+    # [6.10] with mu_s = 0 (fits.cpp's two parameters b, beta): b at I_s = 1, zero at I_s = 0
+    assert abs(f.friction_6_10(1.0, 0.5, 0.8) - 0.5) < 1e-12
+    assert f.friction_6_10(0.0, 0.5, 0.8) == 0.0
+    assert abs(f.friction_6_10(0.25, 0.5, 0.5) - 0.25) < 1e-12
 
 
 if __name__ == "__main__":
