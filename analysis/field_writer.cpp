@@ -243,4 +243,13 @@ void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_n
   if (!out.flush()) throw std::runtime_error("'" + xmf.string() + "': cannot write");
 }
 
+std::filesystem::path store_ensemble(const std::filesystem::path& file,
+                                     const EnsembleResult& result) {
+  write_analysis_hdf5(file, result);
+  std::filesystem::path xmf = file;
+  xmf.replace_extension(".fields.xmf");
+  write_fields_xdmf(xmf, file.filename().string(), result);
+  return xmf;
+}
+
 }  // namespace granjet::analysis

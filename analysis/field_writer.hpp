@@ -36,4 +36,9 @@ std::vector<double> read_analysis_values(const std::filesystem::path& file,
 void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
                        const EnsembleResult& result);
 
+// Both of the above, the one way every command stores an analysis: /fields and /analysis into
+// `file`, and `file` with the extension .fields.xmf beside it. Returns the sidecar's path.
+std::filesystem::path store_ensemble(const std::filesystem::path& file,
+                                     const EnsembleResult& result);
+
 }  // namespace granjet::analysis

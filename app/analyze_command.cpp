@@ -55,10 +55,7 @@ int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
                                      ".." + std::to_string(config.window_end));
   const std::vector<analysis::RunResult> runs{run.finish()};
   const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  analysis::write_analysis_hdf5(options.file, result);
-  std::filesystem::path xmf = options.file;
-  xmf.replace_extension(".fields.xmf");
-  analysis::write_fields_xdmf(xmf, options.file.filename().string(), result);
+  const std::filesystem::path xmf = analysis::store_ensemble(options.file, result);
   out << "analysed " << used << " frames in " << config.window_start << ".." << config.window_end
       << "; wrote /fields and /analysis into " << options.file.string() << " and "
       << xmf.string() << "\n";

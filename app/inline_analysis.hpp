@@ -22,6 +22,8 @@ class InlineAnalysis {
   // Looks at the run at sim.time() (call after every advance_to).
   void observe(Simulator<D>& sim);
   analysis::RunResult finish() const { return analysis_.finish(); }
+  // Whether any sample fell inside the analysis window (false: the run ended before it).
+  bool window_sampled() const { return analysis_.field_accumulator().samples() > 0; }
   // Wall time spent in observe(), to report what the analysis costs the run.
   double seconds() const { return seconds_; }
 

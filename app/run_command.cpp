@@ -13,6 +13,7 @@
 #include "analysis/h5md_writer.hpp"
 #include "analysis/kinetic_theory.hpp"
 #include "app/backend_factory.hpp"
+#include "app/ensemble_output.hpp"
 #include "app/gas_observer.hpp"
 #include "app/inline_analysis.hpp"
 #include "app/progress_table.hpp"
@@ -56,24 +57,10 @@ template <int D>
 nlohmann::json store_analysis(const InlineAnalysis<D>& fields, const std::filesystem::path& file) {
   const std::vector<analysis::RunResult> runs{fields.finish()};
   const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  analysis::write_analysis_hdf5(file, result);
-  std::filesystem::path xmf = file;
-  xmf.replace_extension(".fields.xmf");
-  analysis::write_fields_xdmf(xmf, file.filename().string(), result);
+  analysis::store_ensemble(file, result);
   nlohmann::json j = analysis::to_json(result);
   j["seconds"] = fields.seconds();
   return j;
-}
-
-// Writes the JSON next to its final name and renames it, so a reader never sees half a file.
-void write_json_atomically(const std::filesystem::path& path, const nlohmann::json& j) {
-  const std::filesystem::path tmp = path.string() + ".partial";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw std::runtime_error("cannot write the summary " + tmp.string());
-    f << j.dump(2) << "\n";
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 template <int D>
@@ -112,7 +99,7 @@ nlohmann::json summary_json(const Scene& scene, const std::string& backend,
 
 template <int D>
 int run_scene(const Scene& scene, const RunOptions& options, const std::filesystem::path& out_file,
-              std::ostream& out, std::vector<analysis::RunResult>* ensemble = nullptr) {
+              std::ostream& out) {
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, scene);
   for (const std::string& note : backend_notes(options.backend, scene))
     std::cerr << "granjet: " << note << "\n";
@@ -215,8 +202,13 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   if (status == "complete") {
     writer.finish();
     summary["output"] = out_file.string();
-    if (fields) summary["analysis"] = store_analysis<D>(*fields, out_file);
-    if (fields && ensemble) ensemble->push_back(fields->finish());
+    // A window that never opened (t_end before its start) measured nothing: no all-NaN fields.
+    if (fields && fields->window_sampled())
+      summary["analysis"] = store_analysis<D>(*fields, out_file);
+    else if (fields)
+      std::cerr << "granjet: the analysis window " << scene.analysis.window_start << ".."
+                << scene.analysis.window_end << " never started (the run ended at t = "
+                << sim->time() << "); no fields written\n";
   }
   if (!options.quiet || status != "complete") {
     const SimStats s = sim->stats();
@@ -242,43 +234,28 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
 
 }  // namespace
 
-// The same scene once per seed; the analysis combined over the seeds (spec §5: error bars are
-// the spread over independent initial configurations).
+// The same scene once per seed, then the analysis combined over the seeds from the run files
+// (spec §5: error bars are the spread over independent initial configurations).
 template <int D>
 int run_ensemble(const Scene& scene, const RunOptions& options,
                  const std::filesystem::path& out_file, std::ostream& out) {
-  const auto with_seed = [](const std::filesystem::path& file, std::uint64_t seed) {
-    if (file.empty()) return file;
-    std::filesystem::path f = file;
-    return f.replace_extension(".seed" + std::to_string(seed) + file.extension().string());
-  };
-  std::vector<analysis::RunResult> runs;
-  nlohmann::json members = nlohmann::json::array();
+  std::vector<EnsembleMember> members;
   int worst = 0;
   for (const std::uint64_t seed : options.seeds) {
     Scene one = scene;
     one.run.seed = seed;
     RunOptions o = options;
-    o.summary = with_seed(options.summary, seed);
+    o.summary = member_file(options.summary, seed);
     if (!options.quiet) out << "seed " << seed << "\n";
-    worst = std::max(worst, run_scene<D>(one, o, with_seed(out_file, seed), out, &runs));
-    members.push_back({{"seed", seed}, {"output", with_seed(out_file, seed).string()}});
+    const std::filesystem::path file = member_file(out_file, seed);
+    worst = std::max(worst, run_scene<D>(one, o, file, out));
+    members.push_back({seed, file});
   }
-  if (runs.empty()) return worst;  // analysis disabled or every run failed
-  const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  analysis::write_analysis_hdf5(out_file, result);
-  std::filesystem::path xmf = out_file;
-  xmf.replace_extension(".fields.xmf");
-  analysis::write_fields_xdmf(xmf, out_file.filename().string(), result);
-  out << "ensemble of " << runs.size() << " seeds: /fields and /analysis in " << out_file.string()
-      << "\n";
-  if (!options.summary.empty())
-    write_json_atomically(options.summary, {{"scene", scene.name},
-                                            {"backend", options.backend},
-                                            {"dimension", D},
-                                            {"runs", members},
-                                            {"output", out_file.string()},
-                                            {"analysis", analysis::to_json(result)}});
+  const nlohmann::json header = {{"scene", scene.name}, {"backend", options.backend}, {"dimension", D}};
+  const int combined = write_ensemble(out_file, options.summary, header, members, D);
+  if (combined > 0)
+    out << "ensemble of " << combined << " seeds: /fields and /analysis in " << out_file.string()
+        << "\n";
   return worst;
 }
 

@@ -1,0 +1,25 @@
+// Reads one run's measurements back from the /fields and /analysis groups that
+// write_analysis_hdf5 stored in its file (an ensemble of one seed), so that runs made by separate
+// processes (`granjet run --seeds`, campaigns) are combined over their seeds from their files:
+//
+//   std::vector<RunResult> runs;
+//   for (const auto& file : member_files) runs.push_back(read_run_result(file));
+//   EnsembleResult all = combine_runs(runs, dimension);
+//
+// The values come back bit for bit (an ensemble of one stores each value as its mean); the
+// columns come back in name order, which no consumer depends on.
+#pragma once
+
+#include <filesystem>
+
+#include "analysis/run_analysis.hpp"
+
+namespace granjet::analysis {
+
+// Throws std::runtime_error naming the file when it has no analysis of exactly one run.
+RunResult read_run_result(const std::filesystem::path& file);
+
+// Whether the file holds a stored analysis (/fields and /analysis); false for a missing file.
+bool has_analysis(const std::filesystem::path& file);
+
+}  // namespace granjet::analysis

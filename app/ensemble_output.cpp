@@ -1,0 +1,51 @@
+#include "app/ensemble_output.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "analysis/analysis_json.hpp"
+#include "analysis/field_reader.hpp"
+#include "analysis/field_writer.hpp"
+
+namespace granjet {
+
+std::filesystem::path member_file(const std::filesystem::path& file, std::uint64_t seed) {
+  if (file.empty()) return file;
+  std::filesystem::path f = file;
+  return f.replace_extension(".seed" + std::to_string(seed) + file.extension().string());
+}
+
+int write_ensemble(const std::filesystem::path& out_file, const std::filesystem::path& summary,
+                   nlohmann::json header, const std::vector<EnsembleMember>& members,
+                   int dimension) {
+  std::vector<analysis::RunResult> runs;
+  nlohmann::json listed = nlohmann::json::array();
+  for (const EnsembleMember& m : members) {
+    if (!analysis::has_analysis(m.output)) continue;
+    runs.push_back(analysis::read_run_result(m.output));
+    listed.push_back({{"seed", m.seed}, {"output", m.output.string()}});
+  }
+  if (runs.empty()) return 0;
+  const analysis::EnsembleResult result = analysis::combine_runs(runs, dimension);
+  analysis::store_ensemble(out_file, result);
+  if (!summary.empty()) {
+    header["runs"] = listed;
+    header["output"] = out_file.string();
+    header["analysis"] = analysis::to_json(result);
+    write_json_atomically(summary, header);
+  }
+  return static_cast<int>(runs.size());
+}
+
+void write_json_atomically(const std::filesystem::path& path, const nlohmann::json& j) {
+  const std::filesystem::path tmp = path.string() + ".partial";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw std::runtime_error("cannot write the summary " + tmp.string());
+    f << j.dump(2) << "\n";
+    if (!f.flush()) throw std::runtime_error("cannot write the summary " + tmp.string());
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace granjet
