@@ -1,15 +1,16 @@
-// The granjet command: run | compare | info | --help | --version. Exit codes: 0 done, 1 failure
+// The granjet command: run | compare | campaign | info | analyze | --help | --version. Exit codes: 0 done, 1 failure
 // (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as .partial).
 #include <boost/program_options.hpp>
-#include <charconv>
 #include <iostream>
 
 #include "analysis/h5md_reader.hpp"
 #include "app/analyze_command.hpp"
 #include "app/backend_factory.hpp"
+#include "app/campaign_command.hpp"
 #include "app/compare_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scene_file.hpp"
+#include "app/seed_list.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
 
@@ -21,6 +22,8 @@ constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
               [--summary run.json] [--seeds 1..10 | 1,4,7] [--quiet]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
+  granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
+              [--quiet]            (mpirun -n K granjet campaign ... spreads it over K ranks)
   granjet info run.h5 [--scene]
   granjet analyze run.h5 [--window t0:t1] [--summary fields.json]
   granjet --help | --version
@@ -42,6 +45,18 @@ run options:
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
+campaign options (campaign files: see campaigns/thesis.ini and the README):
+  --out DIR         where the runs go (default out/<FILE's stem>): DIR/GROUP/POINT.seedN.h5
+                    (+ .json summary, .ini resolved scene, .log), the ensembles
+                    DIR/GROUP/POINT.h5 (+ .json), and DIR/manifest.json; a run whose complete
+                    output is there (same resolved scene) is not run again
+  --jobs N          runs at a time on this machine (default: the cores it may use; under
+                    mpirun 1 per rank)
+  --quick           one seed per group, run.t_end and the analysis window shortened by the
+                    campaign's quick_fraction (for tests)
+  --only IDS        only the groups serving these result ids (e.g. F5.3,T5.1)
+  --dry-run         list the runs and their estimated cost; run nothing
+  --quiet           no row per finished run
 info options:
   --scene           print only the stored scene (a scene file that redoes the run)
 analyze options (measurements of the stored frames; contact stress needs inline analysis):
@@ -63,32 +78,6 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   return vm;
 }
 
-// "1..10" (inclusive) or "3,7,9".
-std::vector<std::uint64_t> parse_seeds(const std::string& text) {
-  const auto bad = [&] {
-    return granjet::InputError("--seeds", "'" + text +
-                                              "' is not a range A..B (A <= B) or a list a,b,c");
-  };
-  const auto number = [&](const std::string& s) {
-    std::uint64_t v = 0;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || end != s.data() + s.size() || s.empty()) throw bad();
-    return v;
-  };
-  std::vector<std::uint64_t> seeds;
-  if (const auto dots = text.find(".."); dots != std::string::npos) {
-    const std::uint64_t first = number(text.substr(0, dots)), last = number(text.substr(dots + 2));
-    if (last < first || last - first > 10000) throw bad();
-    for (std::uint64_t s = first; s <= last; ++s) seeds.push_back(s);
-    return seeds;
-  }
-  std::size_t start = 0;
-  for (std::size_t comma; (comma = text.find(',', start)) != std::string::npos; start = comma + 1)
-    seeds.push_back(number(text.substr(start, comma - start)));
-  seeds.push_back(number(text.substr(start)));
-  return seeds;
-}
-
 int run(const std::vector<std::string>& args) {
   granjet::RunOptions o;
   po::options_description desc;
@@ -98,7 +87,7 @@ int run(const std::vector<std::string>& args) {
       "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet));
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
-  if (vm.count("seeds")) o.seeds = parse_seeds(vm["seeds"].as<std::string>());
+  if (vm.count("seeds")) o.seeds = granjet::parse_seeds(vm["seeds"].as<std::string>(), "--seeds");
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   return granjet::run_command(o, std::cout);
@@ -137,6 +126,26 @@ int compare(const std::vector<std::string>& args) {
   return granjet::compare_command(o, std::cout);
 }
 
+int campaign(const std::vector<std::string>& args, const std::vector<std::string>& all) {
+  granjet::CampaignOptions o;
+  std::string only;
+  po::options_description desc;
+  desc.add_options()("file", po::value<std::string>()->required())(
+      "out", po::value<std::string>())("jobs", po::value(&o.jobs))(
+      "quick", po::bool_switch(&o.quick))("only", po::value(&only))(
+      "dry-run", po::bool_switch(&o.dry_run))("quiet", po::bool_switch(&o.quiet));
+  const po::variables_map vm = parse(args, desc, "file");
+  o.file = vm["file"].as<std::string>();
+  if (vm.count("out")) o.out_dir = vm["out"].as<std::string>();
+  for (std::size_t start = 0; !only.empty() && start <= only.size();) {
+    const std::size_t comma = std::min(only.find(',', start), only.size());
+    if (comma > start) o.only.push_back(only.substr(start, comma - start));
+    start = comma + 1;
+  }
+  o.command_line = all;
+  return granjet::campaign_command(o, std::cout);
+}
+
 int info(const std::vector<std::string>& args) {
   bool scene_only = false;
   po::options_description desc;
@@ -173,6 +182,7 @@ int main(int argc, char** argv) {
     if (command == "run") return run(args);
     if (command == "compare") return compare(args);
     if (command == "info") return info(args);
+    if (command == "campaign") return campaign(args, all);
     if (command == "analyze") return analyze(args);
     std::cerr << "granjet: unknown command '" << command << "'\n" << kUsage;
     return 2;

@@ -9,6 +9,7 @@ packages=(
   build-essential cmake
   libeigen3-dev libboost-dev libboost-program-options-dev libhdf5-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin hdf5-tools
   python3-h5py python3-matplotlib python3-numpy
 )
 missing=()

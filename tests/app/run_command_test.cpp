@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "analysis/field_reader.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "command_fixture.hpp"
 
@@ -50,6 +51,22 @@ TEST_F(GranjetCommand, SameSceneAndSeedGiveBitIdenticalFrames) {
   EXPECT_TRUE(a.position == b.position);  // bit for bit
   EXPECT_TRUE(a.velocity == b.velocity);
   EXPECT_FALSE(a.position == c.position);
+}
+
+TEST_F(GranjetCommand, AnalysisWindowThatNeverStartsSaysSoAndWritesNoFields) {
+  const fs::path out = dir_ / "early.h5", summary = dir_ / "early.json";
+  ASSERT_EQ(granjet("run " + scene("jet3d.ini") +
+                    " --quiet --set jet.grains=300 --set run.t_end=4 --set analysis.window_start=8"
+                    " --set analysis.window_end=16 --out " + out.string() + " --summary " +
+                    summary.string()),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("analysis window 8..16 never started"), std::string::npos) << err_;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_FALSE(analysis::has_analysis(out));
+  EXPECT_FALSE(fs::exists(dir_ / "early.fields.xmf"));
+  std::ifstream in(summary);
+  EXPECT_FALSE(nlohmann::json::parse(in).contains("analysis"));
 }
 
 TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {

@@ -1,0 +1,51 @@
+#include "app/campaign_command.hpp"
+
+#include <ostream>
+
+#include "app/campaign_file.hpp"
+#include "app/campaign_plan.hpp"
+#include "app/campaign_report.hpp"
+#include "app/campaign_runner.hpp"
+#include "app/child_process.hpp"
+#include "app/mpi_world.hpp"
+#include "app/version.hpp"
+#include "core/errors.hpp"
+
+namespace granjet {
+
+int campaign_command(const CampaignOptions& options, std::ostream& out) {
+  if (options.jobs < 0 || options.jobs > 1024)
+    throw InputError("--jobs", std::to_string(options.jobs) + " is not in 1..1024");
+  MpiWorld world;
+  const CampaignFile campaign = load_campaign(options.file);
+  PlanOptions plan_options;
+  plan_options.out_dir = options.out_dir.empty()
+                             ? std::filesystem::path("out") / options.file.stem()
+                             : options.out_dir;
+  plan_options.quick = options.quick;
+  plan_options.only = options.only;
+  const CampaignPlan plan = plan_campaign(campaign, plan_options);
+  const int jobs = options.jobs > 0 ? options.jobs : world.size() > 1 ? 1 : available_cores();
+
+  if (options.dry_run) {
+    if (world.rank() == 0) print_dry_run(campaign, plan, jobs + world.size() - 1, out);
+    return 0;
+  }
+  if (world.rank() != 0) {
+    work_for_campaign(plan, world);
+    return 0;
+  }
+  std::filesystem::create_directories(plan_options.out_dir);
+  RunnerOptions runner;
+  runner.out_dir = plan_options.out_dir;
+  runner.jobs = jobs;
+  runner.quiet = options.quiet;
+  runner.invocation = {{"version", kVersion},
+                       {"commit", kCommit},
+                       {"command", options.command_line},
+                       {"quick", options.quick},
+                       {"only", options.only}};
+  return coordinate_campaign(campaign, plan, world, runner, out);
+}
+
+}  // namespace granjet

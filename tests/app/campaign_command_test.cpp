@@ -1,0 +1,217 @@
+// `granjet campaign` end to end on campaigns/smoke.ini (ten runs of a fraction of a second):
+// merging, resuming after a kill, --jobs and MPI ranks giving the same files, a changed key
+// rerunning only its group, malformed files refused, and the thesis campaign's dry run.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <regex>
+#include <set>
+#include <thread>
+
+#include "analysis/field_reader.hpp"
+#include "command_fixture.hpp"
+
+namespace granjet::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCampaigns = fs::path(GRANJET_SCENES_DIR) / ".." / "campaigns";
+const std::string kSmoke = (kCampaigns / "smoke.ini").string();
+
+class CampaignCommand : public CommandTest {
+ protected:
+  // The run and ensemble files under `dir`, relative to it.
+  static std::set<fs::path> h5_files(const fs::path& dir) {
+    std::set<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+      if (entry.path().extension() == ".h5") files.insert(fs::relative(entry.path(), dir));
+    return files;
+  }
+  // Every HDF5 file of `a` has a twin in `b` with the same contents (h5diff: every dataset and
+  // attribute, value for value).
+  static void expect_same_files(const fs::path& a, const fs::path& b) {
+    const std::set<fs::path> files = h5_files(a);
+    EXPECT_EQ(files, h5_files(b));
+    EXPECT_EQ(files.size(), 10u + 4u);  // ten runs, four analysed ensembles
+    for (const fs::path& f : files) {
+      const std::string cmd =
+          std::string(GRANJET_H5DIFF) + " -q " + (a / f).string() + " " + (b / f).string();
+      EXPECT_EQ(std::system(cmd.c_str()), 0) << f;
+    }
+  }
+  nlohmann::json manifest(const fs::path& dir) const {
+    std::ifstream in(dir / "manifest.json");
+    return nlohmann::json::parse(in);
+  }
+  // A copy of smoke.ini in the test directory (scene paths made absolute), with `edit` applied.
+  fs::path smoke_copy(const std::string& from = "", const std::string& to = "") const {
+    std::ifstream in(kSmoke);
+    std::stringstream s;
+    s << in.rdbuf();
+    std::string text = std::regex_replace(s.str(), std::regex(R"(\.\./scenes/)"),
+                                          std::string(GRANJET_SCENES_DIR) + "/");
+    if (!from.empty()) text.replace(text.find(from), from.size(), to);
+    const fs::path file = dir_ / "smoke.ini";
+    std::ofstream(file) << text;
+    return file;
+  }
+};
+
+TEST_F(CampaignCommand, SmokeRunsEveryRunMergesEachEnsembleAsRunSeedsDoesAndSkipsWhatIsDone) {
+  const fs::path out = dir_ / "a";
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --out " + out.string() + " --jobs 2"), 0) << err_;
+  const nlohmann::json m = manifest(out);
+  EXPECT_EQ(m["campaign"], "smoke");
+  ASSERT_EQ(m["runs"].size(), 10u);
+  for (const auto& [name, run] : m["runs"].items()) {
+    EXPECT_EQ(run["status"], "complete") << name;
+    EXPECT_TRUE(fs::exists(run["output"].get<std::string>())) << name;
+    EXPECT_FALSE(run["host"].get<std::string>().empty());
+  }
+  EXPECT_EQ(m["ensembles"]["jet2d/friction-0.2"]["combined"], 2);
+  EXPECT_TRUE(analysis::has_analysis(out / "jet3d" / "jet3d.h5"));
+
+  // The ensemble is the one `granjet run --seeds` makes of the same scene.
+  const fs::path member_ini = out / "jet2d" / "friction-0.2.seed1.ini";
+  ASSERT_EQ(granjet("run " + member_ini.string() + " --seeds 1..2 --quiet --out " +
+                    (dir_ / "seeds.h5").string()),
+            0)
+      << err_;
+  for (const auto& [mine, theirs] :
+       {std::pair{dir_ / "seeds.h5", out / "jet2d" / "friction-0.2.h5"},
+        std::pair{dir_ / "seeds.seed2.h5", out / "jet2d" / "friction-0.2.seed2.h5"}}) {
+    const std::string cmd =
+        std::string(GRANJET_H5DIFF) + " -q " + mine.string() + " " + theirs.string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << theirs;
+  }
+
+  // Run again: nothing runs, nothing is rewritten.
+  const auto stamp = fs::last_write_time(out / "jet3d" / "jet3d.seed1.h5");
+  const auto merged = fs::last_write_time(out / "jet3d" / "jet3d.h5");
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --out " + out.string() + " --jobs 2"), 0) << err_;
+  const nlohmann::json again = manifest(out);
+  ASSERT_EQ(again["invocations"].size(), 2u);
+  EXPECT_EQ(again["invocations"][1]["executed"], 0);
+  EXPECT_EQ(again["invocations"][1]["found_complete"], 10);
+  EXPECT_EQ(fs::last_write_time(out / "jet3d" / "jet3d.seed1.h5"), stamp);
+  EXPECT_EQ(fs::last_write_time(out / "jet3d" / "jet3d.h5"), merged);
+}
+
+TEST_F(CampaignCommand, KilledCampaignRerunFinishesOnlyTheRestWithTheSameFiles) {
+  const fs::path killed = dir_ / "killed", straight = dir_ / "straight";
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --jobs 1 --out " + straight.string()), 0);
+
+  // Kill -9 the campaign and its running child once a few runs are complete.
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    setsid();
+    const std::string out = killed.string();
+    execl(GRANJET_BINARY, GRANJET_BINARY, "campaign", kSmoke.c_str(), "--quiet", "--jobs", "1",
+          "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int complete = 0;
+  for (int tries = 0; tries < 6000 && complete < 3; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    try {
+      const nlohmann::json m = manifest(killed);
+      complete = 0;
+      for (const auto& [name, run] : m["runs"].items()) complete += run["status"] == "complete";
+    } catch (const std::exception&) {  // not written yet
+    }
+  }
+  kill(-pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  ASSERT_GE(complete, 3);
+  ASSERT_LT(complete, 10) << "the campaign ended before it could be killed";
+  std::size_t done_before = 0;
+  const nlohmann::json at_kill = manifest(killed);
+  for (const auto& [name, run] : at_kill["runs"].items()) done_before += run["status"] == "complete";
+
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --jobs 1 --out " + killed.string()), 0)
+      << err_;
+  const nlohmann::json m = manifest(killed);
+  EXPECT_EQ(m["invocations"][1]["found_complete"].get<std::size_t>(), done_before);
+  EXPECT_EQ(m["invocations"][1]["executed"].get<std::size_t>(), 10u - done_before);
+  expect_same_files(killed, straight);
+}
+
+TEST_F(CampaignCommand, OneJobTwoJobsAndTwoMpiRanksGiveTheSameFiles) {
+  const fs::path one = dir_ / "one", two = dir_ / "two";
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --jobs 1 --out " + one.string()), 0);
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --jobs 2 --out " + two.string()), 0);
+  expect_same_files(one, two);
+#ifdef GRANJET_HAS_MPI
+  // Root needs --allow-run-as-root; two ranks on a machine of any size need --oversubscribe.
+  const fs::path mpi = dir_ / "mpi";
+  const std::string cmd = std::string(GRANJET_MPIEXEC) +
+                          " --allow-run-as-root --oversubscribe -n 2 " + GRANJET_BINARY +
+                          " campaign " + kSmoke + " --quiet --out " + mpi.string() + " > " +
+                          (dir_ / "mpi.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  expect_same_files(one, mpi);
+  const nlohmann::json m = manifest(mpi);
+  std::set<int> ranks;
+  for (const auto& [name, run] : m["runs"].items()) ranks.insert(run["rank"].get<int>());
+  EXPECT_EQ(ranks, (std::set<int>{0, 1})) << "both ranks take runs";
+  EXPECT_EQ(m["invocations"][0]["ranks"], 2);
+#endif
+}
+
+TEST_F(CampaignCommand, AChangedKeyRerunsOnlyItsGroup) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(granjet("campaign " + smoke_copy().string() + " --quiet --out " + out.string()), 0);
+  const auto stamp = fs::last_write_time(out / "jet2d" / "friction-0.seed1.h5");
+  const std::string hard2d = "backend = event_driven\n";
+  ASSERT_EQ(granjet("campaign " + smoke_copy(hard2d, hard2d + "ed.v0 = 0.2\n").string() +
+                    " --quiet --out " + out.string()),
+            0)
+      << err_;
+  const nlohmann::json m = manifest(out);
+  EXPECT_EQ(m["invocations"][1]["executed"], 2);
+  EXPECT_EQ(m["invocations"][1]["found_complete"], 8);
+  EXPECT_EQ(m["runs"]["hard2d/hard2d.seed1"]["overrides"][0], "ed.v0=0.2");
+  EXPECT_EQ(fs::last_write_time(out / "jet2d" / "friction-0.seed1.h5"), stamp);
+}
+
+TEST_F(CampaignCommand, MalformedCampaignExitsTwoNamingGroupAndKeyAndWritesNothing) {
+  const fs::path out = dir_ / "out";
+  const fs::path file = smoke_copy("contact.friction = 0, 0.2", "contact.friction = 0, -0.2");
+  EXPECT_EQ(granjet("campaign " + file.string() + " --out " + out.string()), 2);
+  EXPECT_NE(err_.find("[jet2d] contact.friction"), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(granjet("campaign " + kSmoke + " --only F9.9 --out " + out.string()), 2);
+  EXPECT_NE(err_.find("--only"), std::string::npos) << err_;
+  EXPECT_EQ(granjet("campaign " + kSmoke + " --jobs -1 --out " + out.string()), 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(CampaignCommand, ThesisDryRunListsEveryResultOfTheSpecWithItsRunsAndCost) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(granjet("campaign " + (kCampaigns / "thesis.ini").string() + " --dry-run --out " +
+                    out.string()),
+            0)
+      << err_;
+  EXPECT_FALSE(fs::exists(out));
+  std::ifstream in(dir_ / "stdout.txt");
+  std::stringstream s;
+  s << in.rdbuf();
+  const std::string listing = s.str();
+  // spec §7, every id.
+  for (const char* id : {"T4.1", "F4.2", "F4.3", "F5.3", "F5.4", "F5.5", "F5.6", "T5.1", "F5.7",
+                         "T5.2", "F5.9", "F6.3", "F6.4", "F6.5", "F6.7", "F6.11-F6.14",
+                         "F6.16-F6.18", "FE.1", "HC"}) {
+    const std::regex row("\n" + std::regex_replace(std::string(id), std::regex(R"(\.)"), "\\.") +
+                         " +[^ ]+ +[1-9][0-9]* +[0-9.e+]+");
+    EXPECT_TRUE(std::regex_search(listing, row)) << id;
+  }
+  EXPECT_NE(listing.find("wall time on"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace granjet::testing
