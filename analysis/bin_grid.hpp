@@ -1,5 +1,5 @@
 // The measurement mesh of spec §6 in the two coordinates every bin geometry shares: a lateral
-// coordinate (3D: distance r from the jet axis; 2D: y) and the height h above the wall surface
+// coordinate (3D: distance r from the jet axis; 2D: y) and the height h above the height origin
 // (3D: z; 2D: x). Bins are a uniform lateral x height grid; for the strain rates each bin is also
 // cut into half-cells (half a bin in each direction), on a grid that extends half a bin beyond
 // both lateral ends so that bins shifted laterally by half a bin exist at the borders.
@@ -15,9 +15,10 @@ namespace granjet::analysis {
 // The mesh sizes, from the scene's [analysis] section.
 struct BinSpec {
   double target_radius = 11.0;  // R_tar: 3D rings cover 0..R_tar, 2D bins -R_tar..R_tar
-  // Heights are measured from the target grains' top surface (centres at 0, radius 0.5), where
-  // the study measures from.
-  double wall_surface = 0.5;
+  // Where h = 0 lies on the jet axis (3D z, 2D x). The study does not say whether its "from the
+  // wall z = 0" means the target grains' centre plane (0) or their top surface (0.5); the scene
+  // key analysis.height_origin chooses (AnalysisConfig::for_scene).
+  double height_origin = 0.0;
   int lateral_bins = 5;  // 3D: rings of width R_tar/5; 2D: 10 bins of width 2 R_tar/10
   int layers = 1;        // 3D: one layer 0..5 d; 2D: (a) 0..5 d and (b) 5..10 d
   double layer_height = 5.0;

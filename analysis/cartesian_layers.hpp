@@ -1,5 +1,5 @@
 // 2D bin geometry (spec §6): layers above the target line x = 0, each cut along y. Lateral
-// coordinate y, height h = x - wall surface; the local frame is the Cartesian (x, y) one.
+// coordinate y, height h = x - height origin; the local frame is the Cartesian (x, y) one.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,11 +30,11 @@ class CartesianLayers {
   explicit CartesianLayers(const BinSpec& spec)
       : grid_(-spec.target_radius, spec.target_radius, spec.lateral_bins, spec.layer_height,
               spec.layers),
-        wall_(spec.wall_surface) {}
+        origin_(spec.height_origin) {}
 
   const BinGrid& grid() const { return grid_; }
   double lateral(const VecT& x) const { return x.y(); }
-  double height(const VecT& x) const { return x.x() - wall_; }
+  double height(const VecT& x) const { return x.x() - origin_; }
   Mat frame(const VecT&) const { return Mat::Identity(); }
 
   double bin_volume(int) const { return grid_.lateral_width() * grid_.layer_height(); }
@@ -71,7 +71,7 @@ class CartesianLayers {
 
  private:
   BinGrid grid_;
-  double wall_;
+  double origin_;
 };
 
 }  // namespace granjet::analysis

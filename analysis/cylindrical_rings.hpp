@@ -1,5 +1,5 @@
 // 3D bin geometry (spec §6): rings about the jet axis (the z axis) above the target plane.
-// Lateral coordinate r = sqrt(x^2 + y^2), height h = z - wall surface; the local frame is
+// Lateral coordinate r = sqrt(x^2 + y^2), height h = z - height origin; the local frame is
 // (e_r, e_theta, e_z) at each grain or transfer position.
 #pragma once
 
@@ -36,11 +36,11 @@ class CylindricalRings {
 
   explicit CylindricalRings(const BinSpec& spec)
       : grid_(0.0, spec.target_radius, spec.lateral_bins, spec.layer_height, spec.layers),
-        wall_(spec.wall_surface) {}
+        origin_(spec.height_origin) {}
 
   const BinGrid& grid() const { return grid_; }
   double lateral(const VecT& x) const { return std::hypot(x.x(), x.y()); }
-  double height(const VecT& x) const { return x.z() - wall_; }
+  double height(const VecT& x) const { return x.z() - origin_; }
 
   // Rows e_r, e_theta, e_z at x: v_local = frame v, sigma_local = frame sigma frame^T. On the
   // axis e_r is undefined; e_x is taken (a set of measure zero).
@@ -108,7 +108,7 @@ class CylindricalRings {
 
  private:
   BinGrid grid_;
-  double wall_;
+  double origin_;
 };
 
 }  // namespace granjet::analysis

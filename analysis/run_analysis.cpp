@@ -7,6 +7,7 @@
 #include <string>
 
 #include "analysis/kinetic_theory.hpp"
+#include "core/plate_face.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -25,6 +26,13 @@ std::vector<FitResult> scene_fits(const EnsembleTable& bins, int dimension) {
           fit_mu_power(i_s, mu)};
 }
 
+// The position on the jet axis of the layers' h = 0 (spec §6 "Height origin", an assumption of
+// the reproduction): the target grains' centre plane, or their top surface, which is where the
+// plate's face lies too (kPlateFace).
+double height_origin_position(HeightOrigin origin) {
+  return origin == HeightOrigin::kWallSurface ? kPlateFace : 0.0;
+}
+
 }  // namespace
 
 AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
@@ -34,6 +42,7 @@ AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
   c.bins.layer_height = a.layer_height;
   c.bins.lateral_bins = a.lateral_bins;
   c.bins.layers = a.layers;
+  c.bins.height_origin = height_origin_position(a.height_origin);
   c.window_start = a.window_start;
   c.window_end = a.window_end;
   c.sample_interval = a.sample_interval;

@@ -46,7 +46,8 @@ struct AnalysisConfig {
   // The mesh and window of the scene's [analysis] section (the study's, spec §5-§6, in the
   // shipped scenes: 3D 5 rings of width R_tar/5 in a 5 d layer, window 50..100; 2D layers
   // 0..5 d and 5..10 d cut into 10 bins across -R_tar..R_tar, window 180..300).
-  // R_tar = wall.diameter/2; e-bar [2.55] for frictional grains; scattered grains are counted
+  // R_tar = wall.diameter/2; heights from analysis.height_origin (the target grains' centre
+  // plane or their top surface); e-bar [2.55] for frictional grains; scattered grains are counted
   // beyond 1.5 R_tar (inside the region cut, so they are seen before their removal).
   static AnalysisConfig for_scene(const Scene& scene);
 };

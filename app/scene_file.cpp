@@ -234,6 +234,13 @@ const std::vector<Key>& keys() {
                             FIELD(analysis.layers), 1));
     k.push_back(real_key("analysis.layer_height", "height of a layer in d",
                          FIELD(analysis.layer_height), kPositive));
+    k.push_back(choice_key<HeightOrigin>(
+        "analysis.height_origin",
+        "where layer heights start: the target grains' centre plane (z = 0 in 3D, x = 0 in 2D) "
+        "or their top surface d/2 above it (with a plate: its face)",
+        FIELD(analysis.height_origin),
+        {{"wall_centres", HeightOrigin::kWallCentres},
+         {"wall_surface", HeightOrigin::kWallSurface}}));
     return k;
   }();
   return table;

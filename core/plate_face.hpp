@@ -32,7 +32,9 @@ class PlateFace {
     return x.squaredNorm() <= radius_ * radius_;
   }
   // Grain x's mirror image through the face: r_i - r_j then spans grain and image as for two
-  // grains in contact; the half behind the face lies outside every bin.
+  // grains in contact. The half behind the face lies outside every bin when the layers start at
+  // the face (analysis.height_origin = wall_surface); from the target grains' centre plane
+  // (wall_centres) it counts, as the segment to a target grain would.
   Vec<D> mirror(Vec<D> x) const {
     x[kAxis] = 2.0 * kPlateFace - x[kAxis];
     return x;

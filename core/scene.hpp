@@ -14,6 +14,12 @@ enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
 // face (event-driven backend).
 enum class WallKind { kTethered, kFixed, kPlate };
 enum class Dispersity { kMono, kBi };
+// Where the heights of the measuring layers start (spec §6 "Height origin", which the study's
+// text leaves open): the plane of the target grains' centres (z = 0 in 3D, x = 0 in 2D; the
+// literal reading of "from the wall z = 0") or their top surface, d/2 above it. With a plate
+// target (no grains; its face is where their top surface would be, core/plate_face.hpp) these
+// are the plane d/2 behind the face and the face itself.
+enum class HeightOrigin { kWallCentres, kWallSurface };
 // Restitution laws of the event-driven backend [spec §8].
 enum class RestitutionLaw { kConstant, kVelocityDependent, kTcModel };
 
@@ -100,6 +106,7 @@ struct AnalysisSpec {
   int lateral_bins = 5;  // 3D rings across 0..R_tar, 2D bins across -R_tar..R_tar
   int layers = 1;        // stacked layers of layer_height above the wall
   double layer_height = 5.0;
+  HeightOrigin height_origin = HeightOrigin::kWallCentres;  // h = 0 of the layers
 };
 
 struct OutputSpec {

@@ -18,6 +18,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+// Heights from the target grains' top surface (height origin 0.5), as the positions below assume.
 BinSpec jet3d_spec() { return {11.0, 0.5, 5, 1, 5.0}; }   // R_tar = 11: rings of 2.2
 BinSpec jet2d_spec() { return {33.0, 0.5, 10, 2, 5.0}; }  // R_tar = 33: bins of 6.6
 

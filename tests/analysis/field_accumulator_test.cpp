@@ -16,6 +16,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+// Heights from the target grains' top surface (origin 0.5): the lattices below keep their first
+// row 0.3 d above it. The tests hold for any origin; this one keeps them as written.
 BinSpec jet3d_spec() { return {11.0, 0.5, 5, 1, 5.0}; }
 BinSpec jet2d_spec() { return {33.0, 0.5, 10, 2, 5.0}; }
 
@@ -24,7 +26,7 @@ BinSpec jet2d_spec() { return {33.0, 0.5, 10, 2, 5.0}; }
 template <int D>
 Vec<D> random_point(std::mt19937_64& rng, const BinSpec& s, double margin) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double h = margin + (s.layers * s.layer_height - 2 * margin) * u(rng) + s.wall_surface;
+  const double h = margin + (s.layers * s.layer_height - 2 * margin) * u(rng) + s.height_origin;
   if constexpr (D == 3) {
     const double r = (s.target_radius - margin) * std::sqrt(u(rng)), a = 2 * kPi * u(rng);
     return {r * std::cos(a), r * std::sin(a), h};
@@ -46,10 +48,10 @@ std::vector<PairImpulse<D>> lattice_bonds(const BinSpec& s) {
       for (int j = (D == 3 ? -n_l : 0); j <= (D == 3 ? n_l : 0); ++j) {
         Vec<D> x;
         if constexpr (D == 3) {
-          x = {i + 0.25, j + 0.35, k + 1.0 + s.wall_surface - 0.2};
+          x = {i + 0.25, j + 0.35, k + 1.0 + s.height_origin - 0.2};
           if (std::hypot(x[0], x[1]) > s.target_radius - 1.0) continue;
         } else {
-          x = {k + 1.0 + s.wall_surface - 0.2, i + 0.35};
+          x = {k + 1.0 + s.height_origin - 0.2, i + 0.35};
         }
         sites.push_back(x);
       }

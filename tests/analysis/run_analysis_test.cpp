@@ -12,9 +12,11 @@
 #include <vector>
 
 #include "analysis/analysis_json.hpp"
+#include "analysis/field_reader.hpp"
 #include "analysis/field_writer.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
+#include "core/plate_face.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -30,8 +32,12 @@ Scene jet_scene(int dimension, double target_diameter, double friction) {
   return s;
 }
 
+// Heights from the target grains' top surface: grains() fills bin 5 of layer (a) with the grains
+// at 4.5 < h <= 5 that this origin gives it.
 AnalysisConfig small_2d_config() {
-  AnalysisConfig c = AnalysisConfig::for_scene(jet_scene(2, 66.0, 0.0));
+  Scene s = jet_scene(2, 66.0, 0.0);
+  s.analysis.height_origin = HeightOrigin::kWallSurface;
+  AnalysisConfig c = AnalysisConfig::for_scene(s);
   c.window_start = 1.0;
   c.window_end = 2.0;
   c.sample_interval = 0.5;
@@ -50,6 +56,57 @@ Particles<2> grains(std::uint64_t seed) {
 }
 
 const std::vector<PairImpulse<2>> kBond{{0, 1, {3.0, 1.0}, {3.0, 2.0}, {0.0, -0.5}}};
+
+// The bin (-1: none) that the scene's mesh puts a grain centre at x in.
+template <int D>
+int bin_of(const Scene& scene, const Vec<D>& x) {
+  const BinCoordinates<D> coords(AnalysisConfig::for_scene(scene).bins);
+  return coords.grid().bin_at(coords.lateral(x), coords.height(x));
+}
+
+Scene with_origin(Scene s, HeightOrigin origin) {
+  s.analysis.height_origin = origin;
+  return s;
+}
+
+// Spec §6 "Height origin": the layers start at the target grains' centre plane (wall_centres,
+// the default: z = 0 in 3D, x = 0 in 2D) or at their top surface d/2 above it (wall_surface).
+TEST(HeightOrigin, Spec6_GrainLandsInTheLayerOfItsHeightUnderEachOrigin) {
+  constexpr auto kCentres = HeightOrigin::kWallCentres;
+  constexpr auto kSurface = HeightOrigin::kWallSurface;
+  EXPECT_EQ(Scene{}.analysis.height_origin, kCentres);
+  EXPECT_EQ(AnalysisConfig::for_scene(Scene{}).bins.height_origin, 0.0);
+  // 2D, layers (a) 0 < h <= 5 and (b) 5 < h <= 10; y = 1 is in lateral bin 5 of 10.
+  const Scene s2 = jet_scene(2, 66.0, 0.0);
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {5.3, 1.0}), 15);  // h = 5.3: layer (b)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {5.3, 1.0}), 5);   // h = 4.8: layer (a)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {0.3, 1.0}), 5);   // h = 0.3: layer (a)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {0.3, 1.0}), -1);  // below the surface
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {10.3, 1.0}), 15);  // h = 9.8: layer (b)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {10.3, 1.0}), -1);  // above the mesh
+  // 3D, one layer 0 < h <= 5; r = 1 is in the inner ring.
+  const Scene s3 = jet_scene(3, 22.0, 0.2);
+  EXPECT_EQ(bin_of<3>(with_origin(s3, kCentres), {0.6, 0.8, 5.2}), -1);  // h = 5.2: above
+  EXPECT_EQ(bin_of<3>(with_origin(s3, kSurface), {0.6, 0.8, 5.2}), 0);   // h = 4.7
+  EXPECT_EQ(bin_of<3>(with_origin(s3, kCentres), {0.6, 0.8, 0.4}), 0);   // h = 0.4
+  EXPECT_EQ(bin_of<3>(with_origin(s3, kSurface), {0.6, 0.8, 0.4}), -1);  // h = -0.1: below
+}
+
+// With a plate target the surface origin is the plate's face (core/plate_face.hpp), and the
+// centre origin the plane d/2 behind it, where target grains would have their centres.
+TEST(HeightOrigin, Spec6_SurfaceOriginOfAPlateIsItsFace) {
+  Scene s = jet_scene(3, 22.0, 0.2);
+  s.wall.kind = WallKind::kPlate;
+  const PlateFace<3> plate(s.wall.diameter);
+  const Vec<3> x(1.0, 2.0, 3.7);
+  const auto rings = [&](HeightOrigin origin) {
+    return CylindricalRings(AnalysisConfig::for_scene(with_origin(s, origin)).bins);
+  };
+  const CylindricalRings surface = rings(HeightOrigin::kWallSurface);
+  const CylindricalRings centres = rings(HeightOrigin::kWallCentres);
+  EXPECT_DOUBLE_EQ(surface.height(x), plate.height(x));
+  EXPECT_DOUBLE_EQ(centres.height(x), plate.height(x) + 0.5);
+}
 
 TEST(RunAnalysis, SamplesEveryIntervalAndAveragesTransfersOverTheWindowOnly) {
   RunAnalysis<2> run(small_2d_config());

@@ -48,6 +48,21 @@ TEST(SceneFile, WallKindPlateParsesAndRoundTrips) {
   EXPECT_EQ(parse_scene(in, "resolved", {}).wall.kind, WallKind::kPlate);
 }
 
+// Spec §6 "Height origin": a scene key, wall_centres by default, stored in the resolved scene.
+TEST(SceneFile, AnalysisHeightOriginParsesAndRoundTrips) {
+  EXPECT_EQ(load_scene(kScenes + "/binary.ini", {}).analysis.height_origin,
+            HeightOrigin::kWallCentres);  // a scene without the key: the default
+  const Scene centres = load_scene(kScenes + "/jet3d.ini", {});
+  EXPECT_EQ(centres.analysis.height_origin, HeightOrigin::kWallCentres);
+  EXPECT_NE(scene_to_ini(centres).find("height_origin = wall_centres"), std::string::npos);
+  const Scene s = load_scene(kScenes + "/jet2d.ini", {"analysis.height_origin=wall_surface"});
+  EXPECT_EQ(s.analysis.height_origin, HeightOrigin::kWallSurface);
+  const std::string ini = scene_to_ini(s);
+  EXPECT_NE(ini.find("height_origin = wall_surface"), std::string::npos);
+  std::istringstream in(ini);
+  EXPECT_EQ(parse_scene(in, "resolved", {}).analysis.height_origin, HeightOrigin::kWallSurface);
+}
+
 // Expects an InputError whose message names `key` and contains `allowed`.
 void expect_refused(const std::vector<std::string>& overrides, const std::string& key,
                     const std::string& allowed) {
@@ -73,6 +88,8 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"contact.restitution=abc"}, "contact.restitution", "not a finite number");
   expect_refused({"contact.restitution=nan"}, "contact.restitution", "not a finite number");
   expect_refused({"wall.kind=soft"}, "wall.kind", "tethered | fixed | plate");
+  expect_refused({"analysis.height_origin=surface"}, "analysis.height_origin",
+                 "wall_centres | wall_surface");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
   expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");
