@@ -72,6 +72,14 @@ std::size_t rows_of(hid_t file, const std::string& dataset, const H5Context& ctx
 
 }  // namespace
 
+std::vector<double> read_analysis_values(const std::filesystem::path& file,
+                                         const std::string& dataset) {
+  const H5Context ctx(file);
+  const H5Handle f =
+      ctx.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open", "the file");
+  return read_doubles(f.get(), dataset, ctx);
+}
+
 bool has_analysis(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "analysis/run_analysis.hpp"
 
@@ -18,6 +20,11 @@ namespace granjet::analysis {
 
 // Throws std::runtime_error naming the file when it has no analysis of exactly one run.
 RunResult read_run_result(const std::filesystem::path& file);
+
+// One dataset of doubles (any shape, flattened row-major), e.g. "/fields/stress/rz/mean": for
+// tools and tests. Throws std::runtime_error naming the file and dataset when it is missing.
+std::vector<double> read_analysis_values(const std::filesystem::path& file,
+                                         const std::string& dataset);
 
 // Whether the file holds a stored analysis (/fields and /analysis); false for a missing file.
 bool has_analysis(const std::filesystem::path& file);

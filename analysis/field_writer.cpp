@@ -202,22 +202,6 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
   out.close();
 }
 
-std::vector<double> read_analysis_values(const std::filesystem::path& file,
-                                         const std::string& dataset) {
-  const H5Context ctx(file);
-  const H5Handle f =
-      ctx.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open", "the file");
-  const H5Handle set =
-      ctx.own(H5Dopen2(f.get(), dataset.c_str(), H5P_DEFAULT), H5Dclose, "open", dataset);
-  const H5Handle space = ctx.own(H5Dget_space(set.get()), H5Sclose, "read the shape of", dataset);
-  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  if (n < 0) ctx.fail("read the shape of", dataset);
-  std::vector<double> values(static_cast<std::size_t>(n));
-  ctx.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-            "read", dataset);
-  return values;
-}
-
 void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
                        const EnsembleResult& result) {
   std::ofstream out(xmf);

@@ -25,12 +25,6 @@ namespace granjet::analysis {
 // Throws std::runtime_error naming the file and object when HDF5 fails.
 void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult& result);
 
-// Reads back one dataset of doubles (any shape, flattened row-major), e.g.
-// "/fields/stress/rz/mean": for tools and tests. Throws std::runtime_error naming the file and
-// dataset when it is missing.
-std::vector<double> read_analysis_values(const std::filesystem::path& file,
-                                         const std::string& dataset);
-
 // Writes `xmf` describing /fields of `h5_name` (relative to the directory of `xmf`). Throws
 // std::runtime_error naming `xmf` when it cannot be written.
 void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,

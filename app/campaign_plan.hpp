@@ -75,10 +75,13 @@ CampaignPlan plan_campaign(const CampaignFile& campaign, const PlanOptions& opti
 // stored scene and backend give the same hash is that run's output.
 std::string scene_hash(const std::string& backend, const std::string& scene_ini);
 
-// The one-core rates behind RunCost::seconds, measured on the shipped jets (AMD EPYC, Zen 3,
-// granjet at the commit that introduced campaigns): a rough guide for planning, not a benchmark.
-inline constexpr double kSoftParticleStepsPerSecond3d = 6.0e7;
-inline constexpr double kSoftParticleStepsPerSecond2d = 6.0e7;
-inline constexpr double kEventDrivenGrainTimePerSecond = 6.0e5;
+// The one-core rates behind RunCost::seconds: a rough guide for planning, not a benchmark.
+// Measured on this project's machine (AMD EPYC, family 26 = Zen 5, AVX-512) at the commit
+// that introduced campaigns: jet3d 5.2e7 particle-steps/s, the scattering runs' 990 d column
+// (D_jet = 4.5 d, t_end = 1020) 7.2e7; jet2d (frictionless) 9.2e7; the event-driven jet2d
+// 5.0e5 grains x d/u0 of simulated time per second.
+inline constexpr double kSoftParticleStepsPerSecond3d = 6.5e7;
+inline constexpr double kSoftParticleStepsPerSecond2d = 8.0e7;
+inline constexpr double kEventDrivenGrainTimePerSecond = 5.0e5;
 
 }  // namespace granjet

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "analysis/field_writer.hpp"
+#include "analysis/field_reader.hpp"
 
 namespace granjet {
 namespace {
