@@ -86,7 +86,7 @@ void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int j
     for (const std::string& id : g.results)
       if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
   out << "\n"
-      << printf_string("%-12s %-34s %6s %16s %12s %11s\n", "result", "groups", "runs",
+      << printf_string("%-12s %-48s %6s %16s %12s %11s\n", "result", "groups", "runs",
                        "particle-steps", "grain-time", "CPU hours");
   CostSum total;
   for (const PlannedRun& r : plan.runs) total.add(r.cost);
@@ -106,10 +106,10 @@ void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int j
       if (planned) groups += (groups.empty() ? "" : ",") + group.name;
     }
     if (sum.runs > 0)
-      out << printf_string("%-12s %-34s ", id.c_str(), groups.c_str()) << cost_columns(sum)
+      out << printf_string("%-12s %-48s ", id.c_str(), groups.c_str()) << cost_columns(sum)
           << "\n";
   }
-  out << printf_string("%-12s %-34s ", "total", "") << cost_columns(total) << "\n\n"
+  out << printf_string("%-12s %-48s ", "total", "") << cost_columns(total) << "\n\n"
       << "campaign " << campaign.name << " (" << campaign.file.string() << "): "
       << plan.runs.size() << " runs in " << plan.ensembles.size() << " ensembles; about "
       << format_duration(total.seconds) << " of CPU time, " << format_duration(makespan(plan, jobs))

@@ -148,7 +148,8 @@ class Coordinator {
     if (!options_.quiet)
       out_ << "campaign " << campaign_.name << ": " << plan_.runs.size() << " runs, " << found_
            << " already done, " << pending.size() << " to run on " << options_.jobs
-           << " local slot(s) and " << world_.size() - 1 << " other rank(s)\n";
+           << " local slot(s) and " << world_.size() - 1 << " other rank(s)\n"
+           << std::flush;
   }
 
   nlohmann::json describe(const PlannedRun& run) const {
@@ -202,11 +203,11 @@ class Coordinator {
     done_seconds_ += plan_.runs[r].cost.seconds;
     ++executed_;
     manifest_.save();
-    if (!options_.quiet) print_progress(r, rank);
+    if (!options_.quiet) print_progress(r, rank, code);
     merge_if_settled(ensemble_of_[r]);
   }
 
-  void print_progress(std::size_t r, int rank) {
+  void print_progress(std::size_t r, int rank, int code) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double eta = done_seconds_ > 0.0
@@ -215,6 +216,8 @@ class Coordinator {
     char line[64];
     std::snprintf(line, sizeof line, "[%zu/%zu] ", executed_, plan_.runs.size() - found_);
     out_ << line << plan_.runs[r].name << "  " << state_name(outcomes_[r].state);
+    if (outcomes_[r].state != RunState::kComplete)
+      out_ << " (exit code " << code << ", see " << plan_.runs[r].file(".log").string() << ")";
     std::snprintf(line, sizeof line, "  %.1f s", outcomes_[r].seconds);
     out_ << line << (world_.size() > 1 ? "  rank " + std::to_string(rank) : "") << "  ETA "
          << format_duration(eta) << "\n"
@@ -258,7 +261,8 @@ class Coordinator {
     manifest_.save();
     if (!options_.quiet)
       out_ << "ensemble " << ens.name << ": " << combined << " of " << ens.runs.size()
-           << " seeds combined into " << ens.file(".h5").string() << "\n";
+           << " seeds combined into " << ens.file(".h5").string() << "\n"
+           << std::flush;
   }
 
   int end_invocation() {

@@ -19,7 +19,10 @@ namespace granjet {
 ChildProcess::ChildProcess(const std::vector<std::string>& args,
                            const std::filesystem::path& log)
     : start_(std::chrono::steady_clock::now()) {
-  const std::string program = std::filesystem::read_symlink("/proc/self/exe").string();
+  // The running binary itself, even if a rebuild has replaced the file since it started: every
+  // run of a campaign is made by the same code.
+  const char* self = "/proc/self/exe";
+  const std::string program = std::filesystem::read_symlink(self).string();
   std::vector<char*> argv{const_cast<char*>(program.c_str())};
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -29,7 +32,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& args,
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  const int error = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
+  const int error = posix_spawn(&pid_, self, &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0)
     throw std::runtime_error("cannot start " + program + " (log " + log.string() +

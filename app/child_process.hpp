@@ -15,7 +15,7 @@ namespace granjet {
 
 class ChildProcess {
  public:
-  // Starts this program (/proc/self/exe) with `args`, stdin from /dev/null and stdout and stderr
+  // Starts this very binary (/proc/self/exe) with `args`, stdin from /dev/null and stdout and stderr
   // appended to `log`. Throws std::runtime_error naming the log or the program on failure.
   ChildProcess(const std::vector<std::string>& args, const std::filesystem::path& log);
   ChildProcess(ChildProcess&& other) noexcept;
