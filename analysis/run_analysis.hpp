@@ -57,9 +57,10 @@ struct RunResult {
   MeshEdges edges;
   Table layout;   // per bin: FieldAccumulator::layout()
   Table fields;   // per bin: FieldAccumulator::fields()
-  Table global;   // one row: flatness.a (pooled), psi0, v2 (3D), scattered, samples,
+  Table global;   // one row: flatness_bin.a and flatness_region.a (T5.1: scaled by each bin's
+                  // T_a, or by one T_a for the region), psi0, v2 (3D), scattered, samples,
                   // transfer_time, window_start, window_end
-  Table vdf;      // per histogram interval: "c" (its centre), "density.a"
+  Table vdf;      // per histogram interval: "c" (its centre), "density.a" (each bin's scaling)
   Table azimuth;  // per interval of [0, 2 pi): "phi" (its centre), "dN_dphi" over its mean (3D)
 };
 

@@ -5,9 +5,25 @@
 #include <limits>
 
 namespace granjet::analysis {
+namespace {
+
+// <x^4>/<x^2>^2 of values of zero mean (flatness is blind to their scale); NaN without values.
+double fourth_over_second_squared(const std::vector<double>& x) {
+  if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double x2 = 0.0, x4 = 0.0;
+  for (double v : x) {
+    x2 += v * v;
+    x4 += v * v * v * v;
+  }
+  x2 /= x.size();
+  x4 /= x.size();
+  return x4 / (x2 * x2);
+}
+
+}  // namespace
 
 template <int D>
-std::vector<double> VelocityDistribution<D>::scaled(int component, int bin) const {
+typename VelocityDistribution<D>::BinMoments VelocityDistribution<D>::moments(int component) const {
   std::vector<double> count(bins_, 0.0), sum(bins_, 0.0), squares(bins_, 0.0);
   for (std::size_t k = 0; k < bin_.size(); ++k) {
     const double v = velocity_[k][component];
@@ -15,34 +31,40 @@ std::vector<double> VelocityDistribution<D>::scaled(int component, int bin) cons
     sum[bin_[k]] += v;
     squares[bin_[k]] += v * v;
   }
-  std::vector<double> mean(bins_), sd(bins_);
+  BinMoments m{std::vector<double>(bins_), std::vector<double>(bins_)};
   for (int b = 0; b < bins_; ++b) {
-    mean[b] = count[b] > 0.0 ? sum[b] / count[b] : 0.0;
+    m.mean[b] = count[b] > 0.0 ? sum[b] / count[b] : 0.0;
     // The population deviation, so each bin's scaled values have exactly unit variance.
-    const double var = count[b] > 1.0 ? squares[b] / count[b] - mean[b] * mean[b] : 0.0;
-    sd[b] = std::sqrt(std::max(var, 0.0));
+    const double var = count[b] > 1.0 ? squares[b] / count[b] - m.mean[b] * m.mean[b] : 0.0;
+    m.sd[b] = std::sqrt(std::max(var, 0.0));
   }
+  return m;
+}
+
+template <int D>
+std::vector<double> VelocityDistribution<D>::scaled(int component, int bin) const {
+  const BinMoments m = moments(component);
   std::vector<double> out;
   for (std::size_t k = 0; k < bin_.size(); ++k) {
     const int b = bin_[k];
-    if ((bin < 0 || b == bin) && sd[b] > 0.0)
-      out.push_back((velocity_[k][component] - mean[b]) / sd[b]);
+    if ((bin < 0 || b == bin) && m.sd[b] > 0.0)
+      out.push_back((velocity_[k][component] - m.mean[b]) / m.sd[b]);
   }
   return out;
 }
 
 template <int D>
 double VelocityDistribution<D>::flatness(int component, int bin) const {
-  const std::vector<double> c = scaled(component, bin);
-  if (c.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double c2 = 0.0, c4 = 0.0;
-  for (double x : c) {
-    c2 += x * x;
-    c4 += x * x * x * x;
-  }
-  c2 /= c.size();
-  c4 /= c.size();
-  return c4 / (c2 * c2);
+  return fourth_over_second_squared(scaled(component, bin));
+}
+
+template <int D>
+double VelocityDistribution<D>::flatness_region(int component) const {
+  const BinMoments m = moments(component);
+  std::vector<double> u;  // unscaled: one scale for all leaves the flatness as it is
+  for (std::size_t k = 0; k < bin_.size(); ++k)
+    if (m.sd[bin_[k]] > 0.0) u.push_back(velocity_[k][component] - m.mean[bin_[k]]);
+  return fourth_over_second_squared(u);
 }
 
 template <int D>

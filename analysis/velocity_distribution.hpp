@@ -1,8 +1,14 @@
 // Per-component velocity distributions of the grains in the measurement bins (spec §6): each
-// grain's fluctuation u = v - (mean velocity of its bin) is scaled by the bin's standard
-// deviation of that component, so every bin contributes a unit-variance sample; flatness
-// <c^4>/<c^2>^2 (Gaussian 3, exponential 6). The local-frame velocities of the window are kept,
-// so the means and deviations are those of the whole window, as for T_alpha.
+// grain's fluctuation u = v - (mean velocity of its bin), as in T_g, scaled to unit variance;
+// flatness <c^4>/<c^2>^2 (Gaussian 3, exponential 6). The local-frame velocities of the window
+// are kept, so the means and deviations are those of the whole window, as for T_alpha.
+//
+// The study scales by v_a0 = sqrt(2 T_a/m) without saying whether T_a is each bin's or one value
+// for the whole measured region; both are reported (T5.1). Per bin, every bin contributes a
+// unit-variance sample and a mixture of bins at different temperatures still has the flatness
+// of its shape; per region, one scale for all, so such a mixture adds flatness. The flatness
+// does not depend on the constant factor of the scale, and all grains weigh the same (mass m,
+// the study's convention): T_a's m cancels.
 #pragma once
 
 #include <span>
@@ -23,17 +29,26 @@ class VelocityDistribution {
   }
   std::size_t size() const { return bin_.size(); }
 
-  // Scaled fluctuations c of one component, pooled over all bins or of one bin (bin >= 0).
-  // Bins with fewer than two values or no spread contribute nothing.
+  // Fluctuations c of one component scaled by their bin's standard deviation, pooled over all
+  // bins or of one bin (bin >= 0). Bins with fewer than two values or no spread contribute
+  // nothing.
   std::vector<double> scaled(int component, int bin = -1) const;
-  // <c^4>/<c^2>^2 of scaled(component, bin); NaN without values.
+  // <c^4>/<c^2>^2 of scaled(component, bin), each bin's own T_a; NaN without values.
   double flatness(int component, int bin = -1) const;
+  // <c^4>/<c^2>^2 with one T_a for the whole region: the fluctuations about each bin's mean of
+  // the same bins as scaled(), all scaled by one deviation. NaN without values.
+  double flatness_region(int component) const;
   // Probability density of the pooled scaled values per interval of `edges` (ascending); values
   // outside the edges count in the normalisation, so the density integrates to the fraction
   // inside.
   std::vector<double> density(int component, std::span<const double> edges) const;
 
  private:
+  struct BinMoments {
+    std::vector<double> mean, sd;
+  };
+  BinMoments moments(int component) const;
+
   int bins_;
   std::vector<int> bin_;
   std::vector<Vec<D>> velocity_;

@@ -347,8 +347,21 @@ def plot_scatter_fits(a, panels, out, key, title):
     out.save(fig, a, key, title)
 
 
+def flatness_label(a, name):
+    """T5.1's flatness of component `name` under both readings of the study's scaling
+    (run_analysis.cpp): each bin's own T_a ("bin") and one T_a for the region ("region")."""
+    terms = []
+    for scaling in ("bin", "region"):
+        flat = a.global_value(f"flatness_{scaling}.{name}")
+        if flat is not None:
+            spread = f" ± {flat[1]:.2g}" if flat[1] >= 0 else ""  # one seed: NaN, no spread
+            terms.append(f"{scaling} {flat[0]:.3g}{spread}")
+    return f"flatness {', '.join(terms)}" if terms else None
+
+
 def plot_vdf(a, out):
-    """T5.1: scaled velocity distributions per component, flatness in the legend."""
+    """T5.1: scaled velocity distributions per component (each bin's own scaling), flatness
+    under both scalings in the legend."""
     c = a.h5.get("/analysis/vdf/c")
     densities = {ax: a._spread("/analysis/vdf/density", ax) for ax in a.axes}
     values = np.concatenate([np.ravel(d[0]) for d in densities.values() if d is not None] or [[]])
@@ -362,10 +375,8 @@ def plot_vdf(a, out):
         if density is None:
             note(f"velocity distribution {name} absent")
             continue
-        flat = a.global_value(f"flatness.{name}")
-        label = f"$c_{{{tex(name)}}}$"
-        if flat is not None:  # one seed: no spread
-            label += f", flatness {flat[0]:.3g}" + (f" ± {flat[1]:.2g}" if flat[1] >= 0 else "")
+        flatness = flatness_label(a, name)
+        label = f"$c_{{{tex(name)}}}$" + (f", {flatness}" if flatness else "")
         errorbar(ax, c, density[0], yerr=density[1], positive=True, marker=MARKERS[j], ms=4,
                  label=label)
     grid = np.linspace(c.min(), c.max(), 300)

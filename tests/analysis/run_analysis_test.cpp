@@ -183,7 +183,13 @@ TEST(Ensemble, JsonHasOneEntryPerBinWithSpreadsGlobalsAndFits) {
   EXPECT_TRUE(bin["T_alpha"].contains("x"));
   EXPECT_EQ(bin["n"]["count"], 3);
   EXPECT_GT(bin["T_g"]["std"].get<double>(), 0.0);  // the seeds differ
-  EXPECT_TRUE(j["global"]["flatness"].contains("y"));
+  // T5.1 under both scalings (each bin's T_a, one T_a for the region); no unqualified global.
+  for (const char* scaling : {"flatness_bin", "flatness_region"}) {
+    SCOPED_TRACE(scaling);
+    EXPECT_TRUE(j["global"][scaling].contains("x") && j["global"][scaling].contains("y"));
+    EXPECT_TRUE(j["global"][scaling]["y"]["mean"].is_number());
+  }
+  EXPECT_FALSE(j["global"].contains("flatness"));
   EXPECT_EQ(j["vdf"]["c"].size(), 48u);
   for (const char* law : {"6.2", "6.3", "6.9", "6.10"}) EXPECT_TRUE(j["fits"].contains(law));
   EXPECT_FALSE(j.contains("azimuth"));  // 2D

@@ -98,6 +98,51 @@ TEST(VelocityDistribution, ScaledGaussianFlatnessIsThree) {
   EXPECT_NEAR(vdf.density(0, edges)[0], 0.397, 0.025);
 }
 
+// The unit Gaussian's quantiles at (k + 1/2)/n, k = 0..n-1, by bisection on Phi(x) =
+// erfc(-x/sqrt 2)/2: a deterministic sample with exactly zero mean whose moments are the
+// Gaussian's up to the tails beyond the last quantile (4.06 for n = 20000).
+std::vector<double> gaussian_quantiles(int n) {
+  std::vector<double> q;
+  for (int k = 0; k < n; ++k) {
+    const double p = (k + 0.5) / n;
+    double lo = -10.0, hi = 10.0;
+    for (int i = 0; i < 80; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p ? lo : hi) = mid;
+    }
+    q.push_back(0.5 * (lo + hi));
+  }
+  return q;
+}
+
+// T5.1 under the study's two possible scalings (spec §6): two bins of Gaussian velocities of
+// variances s1 = 1 and s2 = 9 about different means (0.5 and -2), equal in number. Each bin's
+// own T_a makes every bin a unit Gaussian: flatness 3. One T_a for the region scales both by
+// the same deviation, and the equal mixture of the fluctuations (each about its bin's mean) has
+// flatness 3 (s1^2 + s2^2)/2 / ((s1 + s2)/2)^2 = 4.92. The quantile sample misses the tails
+// beyond 4.06: 2.9978 and 4.9165 computed directly from it; tolerance 0.01.
+TEST(VelocityDistribution, FlatnessPerBinAndPerRegionOfTwoGaussianBins) {
+  VelocityDistribution<2> vdf(2);
+  for (double c : gaussian_quantiles(20000)) {
+    vdf.add(0, Vec<2>(0.5 + c, 1.0));
+    vdf.add(1, Vec<2>(-2.0 + 3.0 * c, 1.0));
+  }
+  const double s1 = 1.0, s2 = 9.0;
+  const double mixture = 3.0 * (s1 * s1 + s2 * s2) / 2.0 / std::pow((s1 + s2) / 2.0, 2);
+  EXPECT_NEAR(mixture, 4.92, 1e-12);
+  EXPECT_NEAR(vdf.flatness(0), 3.0, 0.01);              // each bin's own T_a
+  EXPECT_NEAR(vdf.flatness_region(0), mixture, 0.01);  // one T_a for both bins
+  for (int bin : {0, 1}) EXPECT_NEAR(vdf.flatness(0, bin), 3.0, 0.01);  // per-bin field
+  EXPECT_TRUE(std::isnan(vdf.flatness_region(1)));  // no spread: nothing to scale
+  // Equal temperatures: the two scalings agree.
+  VelocityDistribution<2> equal(2);
+  for (double c : gaussian_quantiles(20000)) {
+    equal.add(0, Vec<2>(0.5 + 2.0 * c, 0.0));
+    equal.add(1, Vec<2>(-2.0 + 2.0 * c, 0.0));
+  }
+  EXPECT_NEAR(equal.flatness_region(0), equal.flatness(0), 1e-9);
+}
+
 // Laplace (exponential) velocities: flatness 6; the standard error is sqrt(2484/N) = 0.08 for
 // N = 400000 (E c^8 = 8!/16 = 2520 at unit variance); tolerance 5 of those.
 TEST(VelocityDistribution, ScaledExponentialFlatnessIsSix) {

@@ -137,7 +137,9 @@ def jet3d(path, scene=True):
     tensor(f, "stress_contact", "rtz", con)
     tensor(f, "stress", "rtz", lambda a, b: kin(a, b) + con(a, b))
     tensor(f, "stress_xyz", "xyz", lambda a, b: p if a == b else 0 * r)
-    glob = {"flatness.r": 3.4, "flatness.t": 3.2, "flatness.z": 4.1, "psi0": 1.2, "v2": 0.01,
+    glob = {"flatness_bin.r": 3.4, "flatness_bin.t": 3.2, "flatness_bin.z": 4.1,
+            "flatness_region.r": 3.9, "flatness_region.t": 3.3, "flatness_region.z": 4.6,
+            "psi0": 1.2, "v2": 0.01,
             "scattered": 900, "samples": 101, "transfer_time": 50, "window_start": 50,
             "window_end": 100}
     ini = ("[scene]\nname = jet3d\nkind = jet\ndimension = 3\n\n[contact]\nrestitution = 0.75\n"
@@ -176,7 +178,8 @@ def jet2d(path, frames_only=False):
     tensor(f, "stress_kinetic", "xy", kin)
     tensor(f, "stress_contact", "xy", con)
     tensor(f, "stress", "xy", lambda a, b: kin(a, b) + con(a, b))
-    glob = {"flatness.x": 3.6, "flatness.y": 3.1, "psi0": 1.0, "scattered": 300, "samples": 241,
+    glob = {"flatness_bin.x": 3.6, "flatness_bin.y": 3.1, "flatness_region.x": 4.2,
+            "flatness_region.y": 3.5, "psi0": 1.0, "scattered": 300, "samples": 241,
             "transfer_time": 0 if frames_only else 120, "window_start": 180, "window_end": 300}
     points = 0 if frames_only else 20
     fits = {"6.2": (["phi_T", "a_T", "alpha_T"], [0.82, 0.5, 1.5], points),
@@ -246,6 +249,14 @@ def test_2d_all_figures(tmp):
     check_outputs(result, out, "jet2d",
                   ["stress", "profiles", "eos", "friction", "packing", "vdf"])
     assert "plot_analysis: note" not in result.stderr, result.stderr
+
+
+def test_vdf_legend_shows_flatness_under_both_scalings(tmp):
+    jet3d(os.path.join(tmp, "jet3d.h5"))
+    a = plot_analysis.Analysis(os.path.join(tmp, "jet3d.h5"))
+    with a.h5:
+        label = plot_analysis.flatness_label(a, "z")
+    assert label == "flatness bin 4.1 ± 0.1, region 4.6 ± 0.1", label
 
 
 def test_2d_without_contact_stress_skips_with_notes(tmp):
