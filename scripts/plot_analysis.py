@@ -421,6 +421,10 @@ def main(argv=None):
                                   ("I_s", "phi", ["6.3"], "$I_s$", r"$\phi$")], out,
                               "packing", "packing fraction (F6.5)")
         plot_vdf(a, out)
+    if not out.written:
+        print(f"plot_analysis: error: nothing to draw: every field of '{args.file}' is absent or "
+              "all NaN (did the analysis window ever start?)", file=sys.stderr)
+        return 1
     print("\n".join(out.written))
     return 0
 

@@ -283,6 +283,25 @@ def test_a_run_file_without_analysis_is_refused(tmp):
         os.path.join(tmp, "none"))
 
 
+def test_nothing_to_draw_exits_non_zero_and_writes_no_figure(tmp):
+    """An analysis whose every value is NaN (a window that never started, written by an older
+    granjet) has nothing to draw: exit 1, no PNG, and the reason on stderr."""
+    path = os.path.join(tmp, "empty.h5")
+    jet2d(path)
+    with h5py.File(path, "r+") as f:
+        def blank(name, node):
+            if isinstance(node, h5py.Dataset) and name.endswith("/mean"):
+                node[...] = np.nan
+        f["fields"].visititems(blank)
+        f["analysis"].visititems(blank)
+    out = os.path.join(tmp, "empty")
+    result = run(path, "--out", out)
+    assert result.returncode == 1, (result.returncode, result.stderr)
+    assert "nothing to draw" in result.stderr and "Traceback" not in result.stderr, \
+        result.stderr
+    assert not os.path.isdir(out) or not [p for p in os.listdir(out) if p.endswith(".png")]
+
+
 def test_a_file_that_is_not_hdf5_is_refused(tmp):
     for path in (os.path.join(tmp, "notes.txt"), os.path.join(tmp, "missing.h5")):
         if path.endswith(".txt"):
