@@ -19,9 +19,10 @@ int campaign_command(const CampaignOptions& options, std::ostream& out) {
   MpiWorld world;
   const CampaignFile campaign = load_campaign(options.file);
   PlanOptions plan_options;
-  plan_options.out_dir = options.out_dir.empty()
-                             ? std::filesystem::path("out") / options.file.stem()
-                             : options.out_dir;
+  // --quick runs replace a full run's files of the same name, so they default elsewhere.
+  const std::string stem = options.file.stem().string() + (options.quick ? "-quick" : "");
+  plan_options.out_dir =
+      options.out_dir.empty() ? std::filesystem::path("out") / stem : options.out_dir;
   plan_options.quick = options.quick;
   plan_options.only = options.only;
   const CampaignPlan plan = plan_campaign(campaign, plan_options);

@@ -11,7 +11,7 @@ namespace granjet {
 
 struct CampaignOptions {
   std::filesystem::path file;
-  std::filesystem::path out_dir;  // empty: out/<campaign file stem>
+  std::filesystem::path out_dir;  // empty: out/<file stem>, out/<file stem>-quick with --quick
   int jobs = 0;                   // 0: the cores this process may use (1 per rank under MPI)
   bool quick = false;
   bool dry_run = false;

@@ -46,7 +46,8 @@ compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
 campaign options (campaign files: see campaigns/thesis.ini and the README):
-  --out DIR         where the runs go (default out/<FILE's stem>): DIR/GROUP/POINT.seedN.h5
+  --out DIR         where the runs go (default out/<FILE's stem>, with --quick
+                    out/<FILE's stem>-quick): DIR/GROUP/POINT.seedN.h5
                     (+ .json summary, .ini resolved scene, .log), the ensembles
                     DIR/GROUP/POINT.h5 (+ .json), and DIR/manifest.json; a run whose complete
                     output is there (same resolved scene) is not run again
