@@ -33,6 +33,15 @@ double height_origin_position(HeightOrigin origin) {
   return origin == HeightOrigin::kWallSurface ? kPlateFace : 0.0;
 }
 
+// phi = 0 of the azimuthal distribution, "measured around the jet axis from the short side of
+// the cross section" (spec §6). The rectangle's short sides, the edges of length sqrt(A/l), are
+// parallel to y at x = +-sqrt(A l)/2 (JetSpec): phi = 0 points from the axis at the middle of a
+// short side, along +e_x, the long axis. So v2 = <cos 2 phi> > 0 means grains leave mostly
+// towards the short sides (along the long axis), v2 < 0 towards the long sides. (Measuring from
+// the direction the short edge runs in, e_y, would flip v2's sign.) A cylinder has no preferred
+// direction; e_x serves.
+constexpr double kShortSideAzimuth = 0.0;
+
 }  // namespace
 
 AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
@@ -51,6 +60,7 @@ AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
       contact.friction > 0.0 ? kinetic::effective_restitution(contact.restitution, contact.friction)
                              : contact.restitution;
   c.scatter_radius = std::min(1.5 * c.bins.target_radius, 0.9 * scene.region.radius);
+  c.reference_azimuth = kShortSideAzimuth;
   return c;
 }
 

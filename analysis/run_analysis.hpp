@@ -38,7 +38,9 @@ struct AnalysisConfig {
   BinSpec bins;
   FieldOptions options;
   double scatter_radius = 16.5;    // grains beyond this distance from the jet axis are scattered
-  double reference_azimuth = 0.0;  // phi = 0 direction of the azimuthal distribution (3D)
+  // phi = 0 of the azimuthal distribution (3D): towards the middle of a rectangular jet's short
+  // side, e_x (for_scene).
+  double reference_azimuth = 0.0;
   int vdf_bins = 48;               // histogram of scaled velocities over [-vdf_range, vdf_range]
   double vdf_range = 6.0;
   int azimuth_bins = 36;

@@ -26,8 +26,8 @@ double anisotropy_v2(std::span<const double> azimuths);
 template <int D>
 class ScatteringMeasurement {
  public:
-  // `reference_azimuth`: the direction (angle from e_x about the jet axis) of the jet cross
-  // section's short side, from which phi is measured (3D).
+  // `reference_azimuth`: the direction (angle from e_x about the jet axis) from the axis towards
+  // the middle of the jet cross section's short side, from which phi is measured (3D).
   ScatteringMeasurement(double radius, double reference_azimuth)
       : radius_(radius), reference_(reference_azimuth) {}
 

@@ -172,6 +172,18 @@ const std::vector<Key>& keys() {
     k.push_back(choice_key<bool>("jet.mass_by_volume",
                                  "false: every grain has mass m (the study's convention)",
                                  FIELD(jet.mass_by_volume), {{"false", false}, {"true", true}}));
+    k.push_back(choice_key<JetShape>(
+        "jet.shape",
+        "3D cross section: cylinder of jet.diameter, or rectangle of jet.area and "
+        "jet.aspect_ratio (anisotropy runs; 3D only)",
+        FIELD(jet.shape),
+        {{"cylinder", JetShape::kCylinder}, {"rectangle", JetShape::kRectangle}}));
+    k.push_back(real_key("jet.aspect_ratio",
+                         "rectangle: aspect ratio l, long side sqrt(A l) along x, short side "
+                         "sqrt(A/l) along y",
+                         FIELD(jet.aspect_ratio), {1.0, false, kInf, false}));
+    k.push_back(real_key("jet.area", "rectangle: cross-section area A in d^2", FIELD(jet.area),
+                         kPositive));
     k.push_back(choice_key<WallKind>(
         "wall.kind",
         "the target: tethered grains (springs k_w, dashpots eta_w), fixed grains (immovable), or "
@@ -328,6 +340,9 @@ void validate_scene(const Scene& s) {
     throw InputError("run.dt", format_number(s.dt()) + " must be smaller than contact.contact_time = " +
                                    format_number(s.contact.contact_time));
   if (s.periodic()) validate_gas(s);
+  if (s.kind == SceneKind::kJet && s.dimension == 2 && s.jet.shape == JetShape::kRectangle)
+    throw InputError("jet.shape", "rectangle is a 3D cross section (scene.dimension = 3); the 2D "
+                                  "jet is a strip of width jet.diameter: use cylinder");
   if (s.kind == SceneKind::kJet && s.wall.diameter < s.jet.diameter)
     throw InputError("wall.diameter", "the target must be at least as wide as the jet (jet.diameter = " +
                                           format_number(s.jet.diameter) + ")");

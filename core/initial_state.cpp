@@ -26,13 +26,23 @@ bool is_complete(const std::vector<T>& sites, std::int64_t n) {
   return static_cast<std::int64_t>(sites.size()) == n;
 }
 
+// Whether (x, y) lies in the 3D jet's cross section [spec §5]: the cylinder of diameter D_jet,
+// or the rectangle of the anisotropy runs, long side along x, short side along y (JetSpec).
+bool in_cross_section(const JetSpec& jet, double x, double y) {
+  constexpr double kSlack = 1e-9;  // sites on the border belong to the jet
+  if (jet.shape == JetShape::kRectangle)
+    return std::abs(x) <= 0.5 * jet.long_side() + kSlack &&
+           std::abs(y) <= 0.5 * jet.short_side() + kSlack;
+  const double r_cut = 0.5 * jet.diameter;
+  return x * x + y * y <= r_cut * r_cut + kSlack;
+}
+
 // Jet lattice sites come layer by layer away from the target; each survives the random removal
 // with probability phi~0 [spec §5], and the first N survivors make the jet.
-// 3D: fcc with nearest-neighbour distance `spacing`, cut to a cylinder of diameter D_jet.
+// 3D: fcc with nearest-neighbour distance `spacing`, cut to the cross section.
 std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) {
   const double a = std::sqrt(2.0) * jet.spacing;  // cube edge
-  const double r_cut = 0.5 * jet.diameter;
-  const int n_xy = static_cast<int>(r_cut / a) + 2;
+  const int n_xy = static_cast<int>(jet.outer_radius() / a) + 2;
   // Each half cube layer holds two of the four fcc basis sites.
   constexpr std::array<std::array<double, 2>, 4> kBasis{{{0.0, 0.0}, {0.5, 0.5}, {0.5, 0.0},
                                                          {0.0, 0.5}}};
@@ -45,7 +55,7 @@ std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) 
       for (int j = -n_xy; j <= n_xy; ++j)
         for (int b = 2 * sub; b < 2 * sub + 2; ++b) {
           const double x = a * (i + kBasis[b][0]), y = a * (j + kBasis[b][1]);
-          if (x * x + y * y <= r_cut * r_cut + 1e-9) xy.emplace_back(x, y);
+          if (in_cross_section(jet, x, y)) xy.emplace_back(x, y);
         }
     std::sort(xy.begin(), xy.end());
     for (const auto& [x, y] : xy) {

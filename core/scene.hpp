@@ -2,6 +2,8 @@
 // Parsing lives in app/ (scene_file); building the initial grains in core/initial_state.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -14,6 +16,8 @@ enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
 // face (event-driven backend).
 enum class WallKind { kTethered, kFixed, kPlate };
 enum class Dispersity { kMono, kBi };
+// The 3D jet's cross section: the study's cylinder, or the rectangle of its anisotropy runs.
+enum class JetShape { kCylinder, kRectangle };
 // Where the heights of the measuring layers start (spec §6 "Height origin", which the study's
 // text leaves open): the plane of the target grains' centres (z = 0 in 3D, x = 0 in 2D; the
 // literal reading of "from the wall z = 0") or their top surface, d/2 above it. With a plate
@@ -52,6 +56,21 @@ struct JetSpec {
   double speed = 1.0;       // u0
   double gap = 1.0;         // surface gap between the jet front and the target grains
   bool mass_by_volume = false;  // false: every grain has mass m (the study's convention)
+  // Anisotropy runs (spec §5, F4.3; 3D only): a rectangle of area A = `area` (d^2) and aspect
+  // ratio l = `aspect_ratio` >= 1, long side sqrt(A l) along x, short side sqrt(A/l) along y,
+  // eccentricity (l^2 - 1)/(l^2 + 1). `diameter` is then unused.
+  JetShape shape = JetShape::kCylinder;
+  double aspect_ratio = 1.0;
+  double area = 16.0;
+
+  double long_side() const { return std::sqrt(area * aspect_ratio); }   // along x
+  double short_side() const { return std::sqrt(area / aspect_ratio); }  // along y
+  // The largest distance of the cross section from the jet axis (3D): the cylinder's radius or
+  // the rectangle's half-diagonal.
+  double outer_radius() const {
+    return shape == JetShape::kRectangle ? 0.5 * std::hypot(long_side(), short_side())
+                                         : 0.5 * diameter;
+  }
 };
 
 struct WallSpec {

@@ -108,6 +108,33 @@ TEST(HeightOrigin, Spec6_SurfaceOriginOfAPlateIsItsFace) {
   EXPECT_DOUBLE_EQ(centres.height(x), plate.height(x) + 0.5);
 }
 
+// F4.3's v2 (spec §6): phi is measured from the short side of a rectangular jet (long side along
+// x), so phi = 0 is e_x. Scattered grains evenly spaced in t on an ellipse (A cos t, B sin t)
+// outside the scatter radius have <cos 2 phi> = (1 - k)/(1 + k), k = B/A: +0.25 for k = 0.6
+// (elongated along x, towards the short sides), -0.25 when elongated along y.
+TEST(Anisotropy, F4_3_V2SignFollowsTheElongationFromTheShortSide) {
+  Scene s = jet_scene(3, 22.0, 0.2);
+  s.jet.shape = JetShape::kRectangle;
+  s.jet.aspect_ratio = 4.0;
+  const AnalysisConfig c = AnalysisConfig::for_scene(s);
+  EXPECT_EQ(c.reference_azimuth, 0.0);
+  const double big = 2.0 * c.scatter_radius, small = 1.2 * c.scatter_radius;  // k = 0.6
+  for (const bool along_x : {true, false}) {
+    SCOPED_TRACE(along_x ? "elongated along x" : "elongated along y");
+    ScatteringMeasurement<3> m(c.scatter_radius, c.reference_azimuth);
+    Particles<3> p;
+    for (int k = 0; k < 360; ++k) {
+      const double t = 2.0 * std::numbers::pi * (k + 0.5) / 360;
+      const double x = (along_x ? big : small) * std::cos(t);
+      const double y = (along_x ? small : big) * std::sin(t);
+      p.add(k, GrainKind::kFree, {x, y, 1.0}, {x, y, 0.0}, 0.5, 1.0);
+    }
+    m.observe(p);
+    ASSERT_EQ(m.count(), 360u);
+    EXPECT_NEAR(m.v2(), along_x ? 0.25 : -0.25, 1e-12);
+  }
+}
+
 TEST(RunAnalysis, SamplesEveryIntervalAndAveragesTransfersOverTheWindowOnly) {
   RunAnalysis<2> run(small_2d_config());
   const Particles<2> p = grains(1);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -63,6 +64,21 @@ TEST(SceneFile, AnalysisHeightOriginParsesAndRoundTrips) {
   EXPECT_EQ(parse_scene(in, "resolved", {}).analysis.height_origin, HeightOrigin::kWallSurface);
 }
 
+// Spec §5 anisotropy runs: the rectangular jet's keys parse and are stored in the resolved scene.
+TEST(SceneFile, RectangularJetKeysParseAndRoundTrip) {
+  EXPECT_EQ(load_scene(kScenes + "/jet3d.ini", {}).jet.shape, JetShape::kCylinder);
+  const Scene s = load_scene(kScenes + "/jet3d.ini",
+                             {"jet.shape=rectangle", "jet.aspect_ratio=3", "jet.area=16"});
+  EXPECT_EQ(s.jet.shape, JetShape::kRectangle);
+  EXPECT_DOUBLE_EQ(s.jet.long_side(), std::sqrt(48.0));
+  EXPECT_DOUBLE_EQ(s.jet.short_side(), std::sqrt(16.0 / 3.0));
+  const std::string ini = scene_to_ini(s);
+  for (const char* line : {"shape = rectangle", "aspect_ratio = 3", "area = 16"})
+    EXPECT_NE(ini.find(line), std::string::npos) << line;
+  std::istringstream in(ini);
+  EXPECT_EQ(scene_to_ini(parse_scene(in, "resolved", {})), ini);
+}
+
 // Expects an InputError whose message names `key` and contains `allowed`.
 void expect_refused(const std::vector<std::string>& overrides, const std::string& key,
                     const std::string& allowed) {
@@ -90,6 +106,11 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"wall.kind=soft"}, "wall.kind", "tethered | fixed | plate");
   expect_refused({"analysis.height_origin=surface"}, "analysis.height_origin",
                  "wall_centres | wall_surface");
+  expect_refused({"jet.shape=square"}, "jet.shape", "cylinder | rectangle");
+  expect_refused({"jet.aspect_ratio=0.5"}, "jet.aspect_ratio", ">= 1");
+  expect_refused({"jet.area=0"}, "jet.area", "> 0");
+  // The rectangle is a 3D cross section (spec §5); the 2D jet is a strip.
+  expect_refused({"scene.dimension=2", "jet.shape=rectangle"}, "jet.shape", "3D");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
   expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
 
 namespace granjet {
 namespace {
@@ -107,6 +110,92 @@ TEST(InitialState, Jet2dBidisperseHalfSmallNoOverlap67TargetDisks) {
   }
   EXPECT_EQ(small, 1000);
   EXPECT_GE(min_distance_ratio(p), 1.0 - 1e-12);
+}
+
+// Spec §5 anisotropy runs: jet3d's fcc lattice, every site kept, cut to a rectangle of area A and
+// aspect ratio l (long side sqrt(A l) along x, short side sqrt(A/l) along y); plate target.
+Scene rectangle_jet(double area, double l, std::int64_t grains) {
+  Scene s;
+  s.jet.shape = JetShape::kRectangle;
+  s.jet.area = area;
+  s.jet.aspect_ratio = l;
+  s.jet.phi_tilde = 1.0;
+  s.jet.grains = grains;
+  s.wall.kind = WallKind::kPlate;
+  return s;
+}
+
+// The (x, y) of the jet grains per lattice layer, keyed by the layer's height in 1e-6 d.
+std::map<long, std::vector<std::pair<double, double>>> layers_of(const Particles<3>& p) {
+  std::map<long, std::vector<std::pair<double, double>>> layers;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind()[i] == GrainKind::kFree) {
+      const Vec<3>& x = p.position()[i];
+      layers[std::lround(x.z() * 1e6)].emplace_back(x.x(), x.y());
+    }
+  return layers;
+}
+
+// Every site inside the rectangle (up to the lattice's relative clearance 1e-9), and the lattice
+// reaching each side to within the row spacing a/2 = 0.707 d (so the cut is not smaller).
+TEST(InitialState, RectangularJetSitesLieInTheRectangle) {
+  for (double l : {1.0, 2.0, 4.0}) {
+    SCOPED_TRACE(l);
+    const Scene s = rectangle_jet(16.0, l, 400);
+    const double half_long = 0.5 * std::sqrt(16.0 * l), half_short = 0.5 * std::sqrt(16.0 / l);
+    double x_max = 0.0, y_max = 0.0;
+    for (const auto& [z, sites] : layers_of(build_initial_state<3>(s)))
+      for (const auto& [x, y] : sites) {
+        EXPECT_LE(std::abs(x), half_long + 1e-6);
+        EXPECT_LE(std::abs(y), half_short + 1e-6);
+        x_max = std::max(x_max, std::abs(x));
+        y_max = std::max(y_max, std::abs(y));
+      }
+    EXPECT_GT(x_max, half_long - 0.5 * std::sqrt(2.0));
+    EXPECT_GT(y_max, half_short - 0.5 * std::sqrt(2.0));
+    if (l > 1.0) EXPECT_GT(x_max, y_max);  // the long side along x
+  }
+}
+
+// l = 1 is the square of side sqrt(A): each layer's sites are the same set after swapping x
+// and y (an fcc (100) layer is symmetric under the swap).
+TEST(InitialState, RectangularJetOfAspectRatioOneIsASquare) {
+  const Scene s = rectangle_jet(16.0, 1.0, 400);
+  for (auto [z, sites] : layers_of(build_initial_state<3>(s))) {
+    std::vector<std::pair<double, double>> swapped;
+    for (const auto& [x, y] : sites) swapped.emplace_back(y, x);
+    const auto key = [](const std::pair<double, double>& p) {
+      return std::pair(std::lround(p.first * 1e6), std::lround(p.second * 1e6));
+    };
+    std::vector<std::pair<long, long>> a, b;
+    for (const auto& p : sites) a.push_back(key(p));
+    for (const auto& p : swapped) b.push_back(key(p));
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b) << "layer at z = " << z * 1e-6;
+  }
+}
+
+// Each fcc (100) layer (cube edge a = sqrt 2 d) is a centred rectangular lattice: rows every a/2
+// along y, sites every a along each row, 2/a^2 = 1 site per d^2. A rectangle L x W holds
+// between L/a - 1 and L/a + 1 sites per row and between 2W/a - 1 and 2W/a + 1 rows, so a full
+// layer's count differs from A 2/a^2 by at most (L + 2W)/a + 1: 9.5 for the study's A = 16,
+// 86 (5%) for A = 1600. Every complete layer is checked (the last one is cut by jet.grains).
+TEST(InitialState, RectangularJetLayersHoldAreaTimesLatticeDensity) {
+  const double a = std::sqrt(2.0);
+  for (double area : {16.0, 1600.0})
+    for (double l : {1.0, 4.0}) {
+      SCOPED_TRACE(::testing::Message() << "A = " << area << ", l = " << l);
+      const Scene s = rectangle_jet(area, l, static_cast<std::int64_t>(6.5 * area));
+      const double long_side = std::sqrt(area * l), short_side = std::sqrt(area / l);
+      const double bound = (long_side + 2.0 * short_side) / a + 1.0;
+      const auto layers = layers_of(build_initial_state<3>(s));
+      ASSERT_GE(layers.size(), 5u);
+      int checked = 0;
+      for (auto it = layers.begin(); std::next(it) != layers.end(); ++it, ++checked)
+        EXPECT_NEAR(static_cast<double>(it->second.size()), area * 2.0 / (a * a), bound);
+      EXPECT_GE(checked, 4);
+    }
 }
 
 TEST(InitialState, SameSeedSameJetOtherSeedOther) {
