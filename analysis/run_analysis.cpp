@@ -33,6 +33,16 @@ double height_origin_position(HeightOrigin origin) {
   return origin == HeightOrigin::kWallSurface ? kPlateFace : 0.0;
 }
 
+// Grains count as scattered once they "have left the target region" (spec §6), which the
+// study's text does not fix; an assumption of the reproduction: beyond 1.5 R_tar, and at least
+// 1 d beyond the jet's outer edge, so that a jet wider than its target (X = D_tar/D_jet < 1,
+// F4.2) does not count its undisturbed grains at t = 0; inside the region cut (0.9 of it), so
+// grains are seen before their removal.
+double scatter_radius_of(const Scene& scene, double target_radius) {
+  const double beyond = std::max(1.5 * target_radius, scene.jet.outer_radius() + 1.0);
+  return std::min(beyond, 0.9 * scene.region.radius);
+}
+
 // phi = 0 of the azimuthal distribution, "measured around the jet axis from the short side of
 // the cross section" (spec §6). The rectangle's short sides, the edges of length sqrt(A/l), are
 // parallel to y at x = +-sqrt(A l)/2 (JetSpec): phi = 0 points from the axis at the middle of a
@@ -59,7 +69,7 @@ AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
   c.options.restitution =
       contact.friction > 0.0 ? kinetic::effective_restitution(contact.restitution, contact.friction)
                              : contact.restitution;
-  c.scatter_radius = std::min(1.5 * c.bins.target_radius, 0.9 * scene.region.radius);
+  c.scatter_radius = scatter_radius_of(scene, c.bins.target_radius);
   c.reference_azimuth = kShortSideAzimuth;
   return c;
 }

@@ -50,7 +50,8 @@ struct AnalysisConfig {
   // 0..5 d and 5..10 d cut into 10 bins across -R_tar..R_tar, window 180..300).
   // R_tar = wall.diameter/2; heights from analysis.height_origin (the target grains' centre
   // plane or their top surface); e-bar [2.55] for frictional grains; scattered grains are counted
-  // beyond 1.5 R_tar (inside the region cut, so they are seen before their removal).
+  // beyond max(1.5 R_tar, the jet's outer radius + 1 d), capped at 0.9 region.radius (inside the
+  // region cut, so they are seen before their removal).
   static AnalysisConfig for_scene(const Scene& scene);
 };
 

@@ -343,9 +343,6 @@ void validate_scene(const Scene& s) {
   if (s.kind == SceneKind::kJet && s.dimension == 2 && s.jet.shape == JetShape::kRectangle)
     throw InputError("jet.shape", "rectangle is a 3D cross section (scene.dimension = 3); the 2D "
                                   "jet is a strip of width jet.diameter: use cylinder");
-  if (s.kind == SceneKind::kJet && s.wall.diameter < s.jet.diameter)
-    throw InputError("wall.diameter", "the target must be at least as wide as the jet (jet.diameter = " +
-                                          format_number(s.jet.diameter) + ")");
 }
 
 std::string scene_to_ini(const Scene& scene) {

@@ -65,8 +65,8 @@ struct JetSpec {
 
   double long_side() const { return std::sqrt(area * aspect_ratio); }   // along x
   double short_side() const { return std::sqrt(area / aspect_ratio); }  // along y
-  // The largest distance of the cross section from the jet axis (3D): the cylinder's radius or
-  // the rectangle's half-diagonal.
+  // The largest distance of the cross section from the jet axis: the cylinder's radius (2D: the
+  // strip's half-width) or the rectangle's half-diagonal.
   double outer_radius() const {
     return shape == JetShape::kRectangle ? 0.5 * std::hypot(long_side(), short_side())
                                          : 0.5 * diameter;
