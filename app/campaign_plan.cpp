@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 #include <sstream>
 
 #include "app/backend_factory.hpp"
@@ -58,20 +60,39 @@ std::vector<std::string> quick_overrides(const Scene& s, double fraction) {
   return o;
 }
 
+// Grains and the mean number of them present over the run. Jet grains leave the region once
+// they have hit the target and flowed out: the column is used up at u0, so the last grain leaves
+// about (column length + region.radius)/u0 after the start, and on average half the column is
+// there while it is being used up.
 template <int D>
-std::int64_t grain_count(const Scene& scene) {
-  return static_cast<std::int64_t>(build_initial_state<D>(scene).size());
+std::pair<std::int64_t, double> grains_over_run(const Scene& scene) {
+  const Particles<D> p = build_initial_state<D>(scene);
+  const auto total = static_cast<std::int64_t>(p.size());
+  if (scene.kind != SceneKind::kJet) return {total, static_cast<double>(total)};
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, jet = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind()[i] != GrainKind::kWall) {
+      lo = std::min(lo, p.position()[i][Dim<D>::kJetAxis]);
+      hi = std::max(hi, p.position()[i][Dim<D>::kJetAxis]);
+      jet += 1.0;
+    }
+  const double used_up = (hi - lo + scene.region.radius) / scene.jet.speed;
+  const double t = scene.run.t_end;
+  const double present = t < used_up ? 1.0 - t / (2.0 * used_up) : used_up / (2.0 * t);
+  return {total, static_cast<double>(total) - jet * (1.0 - present)};
 }
 
 RunCost estimate_cost(const Scene& scene, const std::string& backend) {
   RunCost c;
-  c.grains = scene.dimension == 2 ? grain_count<2>(scene) : grain_count<3>(scene);
+  const auto [grains, mean_grains] =
+      scene.dimension == 2 ? grains_over_run<2>(scene) : grains_over_run<3>(scene);
+  c.grains = grains;
   if (backend == "event_driven") {
-    c.grain_time = static_cast<double>(c.grains) * scene.run.t_end;
+    c.grain_time = mean_grains * scene.run.t_end;
     c.seconds = c.grain_time / kEventDrivenGrainTimePerSecond;
   } else {
     c.steps = static_cast<std::int64_t>(std::ceil(scene.run.t_end / scene.dt() - 0.5));
-    c.particle_steps = static_cast<double>(c.grains) * static_cast<double>(c.steps);
+    c.particle_steps = mean_grains * static_cast<double>(c.steps);
     c.seconds = c.particle_steps / (scene.dimension == 2 ? kSoftParticleStepsPerSecond2d
                                                          : kSoftParticleStepsPerSecond3d);
   }

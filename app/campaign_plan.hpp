@@ -28,10 +28,11 @@ struct PlanOptions {
 
 // What a run costs, estimated before it runs.
 struct RunCost {
-  std::int64_t grains = 0;
+  std::int64_t grains = 0;          // at the start
   std::int64_t steps = 0;           // soft DEM time steps; 0 for the event-driven backend
-  double particle_steps = 0.0;      // soft DEM: grains x steps
-  double grain_time = 0.0;          // event-driven: grains x simulated time
+  double particle_steps = 0.0;      // soft DEM: steps x the grains present on average (jet
+                                    // grains are removed once they have flowed out)
+  double grain_time = 0.0;          // event-driven: the same grains x simulated time
   double seconds = 0.0;             // on one core, from the rates below
 };
 
@@ -75,13 +76,14 @@ CampaignPlan plan_campaign(const CampaignFile& campaign, const PlanOptions& opti
 // stored scene and backend give the same hash is that run's output.
 std::string scene_hash(const std::string& backend, const std::string& scene_ini);
 
-// The one-core rates behind RunCost::seconds: a rough guide for planning, not a benchmark.
-// Measured on this project's machine (AMD EPYC, family 26 = Zen 5, AVX-512) at the commit
-// that introduced campaigns: jet3d 5.2e7 particle-steps/s, the scattering runs' 990 d column
-// (D_jet = 4.5 d, t_end = 1020) 7.2e7; jet2d (frictionless) 9.2e7; the event-driven jet2d
-// 5.0e5 grains x d/u0 of simulated time per second.
+// The one-core rates behind RunCost::seconds: a guide for planning, not a benchmark. Measured
+// on this project's machine (AMD EPYC, family 26, AVX-512) at the commit that introduced
+// campaigns, as `granjet run` reports them (particle_steps_per_second counts the grains
+// present): jet3d 5.2e7, the scattering runs' 990 d column (D_jet = 4.5 d, t_end = 1020) 7.2e7,
+// jet2d frictionless 9.2e7, jet2d at mu_p = 1, t_c = 0.01 1.1e8; the event-driven jet2d 5.0e5
+// grains x d/u0 of simulated time per second.
 inline constexpr double kSoftParticleStepsPerSecond3d = 6.5e7;
-inline constexpr double kSoftParticleStepsPerSecond2d = 8.0e7;
+inline constexpr double kSoftParticleStepsPerSecond2d = 9.5e7;
 inline constexpr double kEventDrivenGrainTimePerSecond = 5.0e5;
 
 }  // namespace granjet
