@@ -6,7 +6,7 @@
 //     layout/<name>                       [layers][lateral] bin centres, indices, volumes
 //     <field path>/{mean,std,sem,count}   [layers][lateral]; "stress.rz" -> stress/rz/...
 //   /analysis
-//     global/<path>/{mean,std,sem,count}  scalars (flatness/r, psi0, v2, samples, ...)
+//     global/<path>/{mean,std,sem,count}  scalars (flatness_bin/r, psi0, v2, ...)
 //     vdf/c, vdf/density/<a>/{mean,std,sem}; azimuth/phi, azimuth/dN_dphi/{mean,std,sem} (3D)
 //     fits/<law>/{value,error}            attributes parameters, ssr, points, converged
 //
