@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <sstream>
 
@@ -157,6 +158,7 @@ void plan_group(const CampaignFile& campaign, std::size_t index, const PlanOptio
     if (seeds.empty()) seeds.push_back(base_scene.run.seed);
     if (options.quick) seeds.resize(1);
     ensemble.analysed = base_scene.kind == SceneKind::kJet && base_scene.analysis.enabled;
+    std::optional<RunCost> point_cost;  // the seeds differ only in which sites are kept
     for (const std::uint64_t seed : seeds) {
       PlannedRun run;
       run.group = index;
@@ -177,7 +179,8 @@ void plan_group(const CampaignFile& campaign, std::size_t index, const PlanOptio
       }
       run.scene_ini = scene_to_ini(run.scene);
       run.hash = scene_hash(run.backend, run.scene_ini);
-      run.cost = estimate_cost(run.scene, run.backend);
+      if (!point_cost) point_cost = estimate_cost(run.scene, run.backend);
+      run.cost = *point_cost;
       run.base = options.out_dir / g.name / (ensemble.point + ".seed" + std::to_string(seed));
       ensemble.runs.push_back(plan.runs.size());
       plan.runs.push_back(std::move(run));

@@ -95,7 +95,7 @@ TEST_F(FieldReader, EnsemblesFromFilesEqualEnsemblesFromMemory) {
     }
   ASSERT_EQ(a.fits.size(), b.fits.size());
   for (std::size_t k = 0; k < a.fits.size(); ++k)
-    for (std::size_t p = 0; p < a.fits[k].value.size(); ++p)
+    for (Eigen::Index p = 0; p < a.fits[k].value.size(); ++p)
       EXPECT_TRUE(same_bits(a.fits[k].value[p], b.fits[k].value[p])) << a.fits[k].law;
 }
 

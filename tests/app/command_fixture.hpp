@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -16,10 +17,12 @@ namespace granjet::testing {
 class CommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
+    // The process id too: two test runs at once (two build trees) must not share directories.
     dir_ = std::filesystem::temp_directory_path() /
            ("granjet_cmd_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_suite()->name()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+            ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+            std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

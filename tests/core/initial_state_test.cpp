@@ -153,7 +153,9 @@ TEST(InitialState, RectangularJetSitesLieInTheRectangle) {
       }
     EXPECT_GT(x_max, half_long - 0.5 * std::sqrt(2.0));
     EXPECT_GT(y_max, half_short - 0.5 * std::sqrt(2.0));
-    if (l > 1.0) EXPECT_GT(x_max, y_max);  // the long side along x
+    if (l > 1.0) {
+      EXPECT_GT(x_max, y_max);  // the long side along x
+    }
   }
 }
 
