@@ -127,8 +127,11 @@ class Coordinator {
       const PlannedRun& run = plan_.runs[r];
       outcomes_[r].state = stored_state(run);
       nlohmann::json& entry = manifest_.run(run.name);
+      // An entry of an earlier invocation keeps its history (host, times) if it describes this
+      // very run; its paths follow DIR, which may have moved.
       const bool known = entry.is_object() && entry.value("hash", std::string()) == run.hash;
-      if (!known) entry = describe(run);
+      if (!known) entry = nlohmann::json::object();
+      entry.update(describe(run));
       if (outcomes_[r].state == RunState::kMissing) {
         entry["status"] = "pending";
         pending.push_back(r);
