@@ -4,7 +4,6 @@
 #include <boost/program_options.hpp>
 #include <cctype>
 #include <charconv>
-#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
