@@ -73,7 +73,9 @@ TEST(NarrowTarget, F4_2_JetWiderThanTheTargetIsMeasuredOnTurnedGrainsOnly) {
       transfers.clear();
       sim->collect_transfers(transfers);
       run.sample(sim->time(), sim->particles(), transfers);
-      if (sim->time() == 0.0) EXPECT_EQ(run.scattering().count(), 0u);  // the jet as built
+      if (sim->time() == 0.0) {
+        EXPECT_EQ(run.scattering().count(), 0u);  // the jet as built
+      }
     }
     ASSERT_GT(run.scattering().count(), 20u);
     for (const Vec<3>& v : run.scattering().velocities())
