@@ -14,6 +14,12 @@ namespace {
 
 const std::string kScenes = GRANJET_SCENES_DIR;
 
+// The scene read back from its resolved INI, as `granjet info --scene` gives it.
+Scene reparsed(const std::string& ini) {
+  std::istringstream in(ini);
+  return parse_scene(in, "resolved", {});
+}
+
 TEST(SceneFile, ShippedScenesLoad) {
   const Scene jet3d = load_scene(kScenes + "/jet3d.ini", {});
   EXPECT_EQ(jet3d.dimension, 3);
@@ -33,8 +39,7 @@ TEST(SceneFile, OverridesWinAndResolvedIniReproducesTheScene) {
   EXPECT_DOUBLE_EQ(s.contact.restitution, 0.9);
   EXPECT_EQ(s.wall.kind, WallKind::kFixed);
   const std::string ini = scene_to_ini(s);
-  std::istringstream in(ini);
-  const Scene again = parse_scene(in, "resolved", {});
+  const Scene again = reparsed(ini);
   EXPECT_EQ(scene_to_ini(again), ini);
   EXPECT_NE(ini.find("dt = 0.002"), std::string::npos);  // dt stored resolved
 }
@@ -45,8 +50,7 @@ TEST(SceneFile, WallKindPlateParsesAndRoundTrips) {
   EXPECT_EQ(s.wall.kind, WallKind::kPlate);
   const std::string ini = scene_to_ini(s);
   EXPECT_NE(ini.find("kind = plate"), std::string::npos);
-  std::istringstream in(ini);
-  EXPECT_EQ(parse_scene(in, "resolved", {}).wall.kind, WallKind::kPlate);
+  EXPECT_EQ(reparsed(ini).wall.kind, WallKind::kPlate);
 }
 
 // Spec §6 "Height origin": a scene key, wall_centres by default, stored in the resolved scene.
@@ -60,8 +64,7 @@ TEST(SceneFile, AnalysisHeightOriginParsesAndRoundTrips) {
   EXPECT_EQ(s.analysis.height_origin, HeightOrigin::kWallSurface);
   const std::string ini = scene_to_ini(s);
   EXPECT_NE(ini.find("height_origin = wall_surface"), std::string::npos);
-  std::istringstream in(ini);
-  EXPECT_EQ(parse_scene(in, "resolved", {}).analysis.height_origin, HeightOrigin::kWallSurface);
+  EXPECT_EQ(reparsed(ini).analysis.height_origin, HeightOrigin::kWallSurface);
 }
 
 // Spec §5 anisotropy runs: the rectangular jet's keys parse and are stored in the resolved scene.
@@ -75,8 +78,7 @@ TEST(SceneFile, RectangularJetKeysParseAndRoundTrip) {
   const std::string ini = scene_to_ini(s);
   for (const char* line : {"shape = rectangle", "aspect_ratio = 3", "area = 16"})
     EXPECT_NE(ini.find(line), std::string::npos) << line;
-  std::istringstream in(ini);
-  EXPECT_EQ(scene_to_ini(parse_scene(in, "resolved", {})), ini);
+  EXPECT_EQ(scene_to_ini(reparsed(ini)), ini);
 }
 
 // Expects an InputError whose message names `key` and contains `allowed`.
