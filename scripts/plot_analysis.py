@@ -151,15 +151,17 @@ class Analysis:
         spread = self._spread("/analysis/global", name)
         return None if spread is None else (float(spread[0]), float(spread[1]))
 
-    def fit(self, law):
+    def fit(self, law, quiet=False):
         node = self.h5.get(f"/analysis/fits/{law}")
         if node is None:
-            note(f"fit {law} is absent: not drawn")
+            if not quiet:
+                note(f"fit {law} is absent: not drawn")
             return None
         value = node["value"][()]
         points = int(node.attrs.get("points", len(value)))
         if points < len(value) or not np.isfinite(value).all():  # fits.cpp: no fit was made
-            note(f"fit {law} has {points} points for {len(value)} parameters: not drawn")
+            if not quiet:
+                note(f"fit {law} has {points} points for {len(value)} parameters: not drawn")
             return None
         return dict(names=text(node.attrs["parameters"]), value=value, error=node["error"][()],
                     converged=float(node.attrs.get("converged", 1.0)) > 0)
