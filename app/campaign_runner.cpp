@@ -7,11 +7,13 @@
 #include <fstream>
 #include <optional>
 #include <ostream>
+#include <sstream>
 #include <thread>
 
 #include "analysis/h5md_reader.hpp"
 #include "app/campaign_manifest.hpp"
 #include "app/ensemble_output.hpp"
+#include "app/scene_file.hpp"
 
 namespace granjet {
 namespace {
@@ -28,15 +30,19 @@ std::optional<nlohmann::json> read_json(const std::filesystem::path& file) {
   }
 }
 
-// Whether `file` is a granjet output of this run's backend and resolved scene.
+// Whether `file` is a granjet output of this run's backend and resolved scene. The stored
+// scene is resolved again by the current parser, so a key added since (whose default keeps
+// the old behaviour) does not make finished runs look foreign.
 bool holds_run(const std::filesystem::path& file, const PlannedRun& run) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
   try {
     const analysis::FileSummary s = analysis::read_summary(file);
-    return scene_hash(s.backend, s.scene_ini) == run.hash;
+    std::istringstream stored(s.scene_ini);
+    const Scene scene = parse_scene(stored, file.string(), {});
+    return scene_hash(s.backend, scene_to_ini(scene)) == run.hash;
   } catch (const std::exception&) {
-    return false;  // unreadable: not this run's output
+    return false;  // unreadable, or a scene this build cannot parse: not this run's output
   }
 }
 
