@@ -193,6 +193,15 @@ const std::vector<Key>& keys() {
          {"plate", WallKind::kPlate}}));
     k.push_back(real_key("wall.diameter", "D_tar (3D) or 2 R_tar (2D), in d", FIELD(wall.diameter),
                          {1.0, false, kInf, false}));
+    k.push_back(choice_key<WallLattice>(
+        "wall.lattice", "3D target grains' lattice (the 2D target is a row)", FIELD(wall.lattice),
+        {{"hexagonal", WallLattice::kHexagonal}, {"square", WallLattice::kSquare}}));
+    k.push_back(real_key("wall.spacing", "centre distance of neighbouring target grains in d",
+                         FIELD(wall.spacing), {1.0, false, kInf, false}));
+    k.push_back(real_key("wall.jitter",
+                         "random layer: largest in-plane shift of a target grain from its site, "
+                         "in d, at most (wall.spacing - 1)/2",
+                         FIELD(wall.jitter), kNonNegative));
     k.push_back(real_key("wall.spring", "tether spring k_w in m u0^2/d^2", FIELD(wall.spring),
                          kNonNegative));
     k.push_back(real_key("wall.damping_ratio", "tether dashpot eta_w / eta_n",
@@ -253,6 +262,10 @@ const std::vector<Key>& keys() {
         FIELD(analysis.height_origin),
         {{"wall_centres", HeightOrigin::kWallCentres},
          {"wall_surface", HeightOrigin::kWallSurface}}));
+    k.push_back(real_key("analysis.scatter_radius",
+                         "grains farther than this from the jet axis count as scattered (psi0, "
+                         "v2); 0: max(1.5 R_tar, jet outer radius + 1), within 0.9 region.radius",
+                         FIELD(analysis.scatter_radius), kNonNegative));
     return k;
   }();
   return table;
@@ -301,6 +314,27 @@ void validate_gas(const Scene& s) {
                                               "run.t_end = " + format_number(s.run.t_end));
 }
 
+// The target grains must not overlap, and the tethers join lattice neighbours only: grains
+// within spacing + 2 jitter of each other, while next-nearest sites, shifted towards each other,
+// stay beyond that.
+void validate_wall(const Scene& s) {
+  const WallSpec& w = s.wall;
+  if (w.jitter > 0.5 * (w.spacing - 1.0) + 1e-12)
+    throw InputError("wall.jitter", format_number(w.jitter) + " would let target grains overlap: "
+                                    "at most (wall.spacing - 1)/2 = " +
+                                        format_number(0.5 * (w.spacing - 1.0)));
+  const bool square = w.lattice == WallLattice::kSquare;
+  if (square && s.dimension == 2)
+    throw InputError("wall.lattice", "square is a 3D lattice; the 2D target is a row: use hexagonal");
+  const double next_nearest = s.dimension == 2 ? 2.0 : square ? std::sqrt(2.0) : std::sqrt(3.0);
+  if (w.spacing + 4.0 * w.jitter >= next_nearest * w.spacing)
+    throw InputError("wall.jitter", format_number(w.jitter) +
+                                        " is too large for wall.spacing = " +
+                                        format_number(w.spacing) +
+                                        ": shifted sites could reach their next-nearest "
+                                        "neighbours' tether range");
+}
+
 }  // namespace
 
 Scene parse_scene(std::istream& in, const std::string& source,
@@ -340,6 +374,12 @@ void validate_scene(const Scene& s) {
     throw InputError("run.dt", format_number(s.dt()) + " must be smaller than contact.contact_time = " +
                                    format_number(s.contact.contact_time));
   if (s.periodic()) validate_gas(s);
+  if (s.kind == SceneKind::kJet) validate_wall(s);
+  if (s.analysis.scatter_radius >= s.region.radius)
+    throw InputError("analysis.scatter_radius",
+                     format_number(s.analysis.scatter_radius) +
+                         " must be smaller than region.radius = " + format_number(s.region.radius) +
+                         " (grains are removed there before they could be seen scattered)");
   if (s.kind == SceneKind::kJet && s.dimension == 2 && s.jet.shape == JetShape::kRectangle)
     throw InputError("jet.shape", "rectangle is a 3D cross section (scene.dimension = 3); the 2D "
                                   "jet is a strip of width jet.diameter: use cylinder");

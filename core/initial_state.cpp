@@ -86,27 +86,50 @@ std::vector<Vec<2>> jet_sites_2d(const JetSpec& jet, double front, Random& rng) 
   return sites;
 }
 
-// Target grains [spec §4]: a touching triangular layer covering the disk of diameter D_tar in
-// the plane z = 0 (3D), or a touching row covering |y| <= R_tar on x = 0 (2D).
-std::vector<Vec<3>> wall_sites_3d(double diameter) {
-  const double r_tar = 0.5 * diameter;
-  const double h = kWallGrainDiameter * std::sqrt(3.0) / 2.0;
-  const int n_rows = static_cast<int>(r_tar / h) + 2;
+// Target grains [spec §4]: one layer covering the disk of diameter D_tar in the plane z = 0
+// (3D), or a row covering |y| <= R_tar on x = 0 (2D); neighbours wall.spacing apart (touching by
+// default), on a hexagonal or square lattice (3D).
+std::vector<Vec<3>> wall_sites_3d(const WallSpec& wall) {
+  const double r_tar = 0.5 * wall.diameter;
+  const bool hexagonal = wall.lattice == WallLattice::kHexagonal;
+  const double row = hexagonal ? wall.spacing * std::sqrt(3.0) / 2.0 : wall.spacing;
+  const int n_rows = static_cast<int>(r_tar / row) + 2;
+  const int n_columns = static_cast<int>(r_tar / wall.spacing) + 2;
   std::vector<Vec<3>> sites;
   for (int r = -n_rows; r <= n_rows; ++r)
-    for (int c = -n_rows - 2; c <= n_rows + 2; ++c) {
-      const double x = (c + 0.5 * ((r % 2 + 2) % 2)) * kWallGrainDiameter;
-      const double y = r * h;
+    for (int c = -n_columns; c <= n_columns; ++c) {
+      const double shift = hexagonal ? 0.5 * ((r % 2 + 2) % 2) : 0.0;  // odd rows sit in gaps
+      const double x = (c + shift) * wall.spacing;
+      const double y = r * row;
       if (x * x + y * y <= r_tar * r_tar + 1e-9) sites.emplace_back(x, y, 0.0);
     }
   return sites;
 }
 
-std::vector<Vec<2>> wall_sites_2d(double diameter) {
-  const int n = static_cast<int>(std::floor(0.5 * diameter / kWallGrainDiameter + 1e-9));
+std::vector<Vec<2>> wall_sites_2d(const WallSpec& wall) {
+  const int n = static_cast<int>(std::floor(0.5 * wall.diameter / wall.spacing + 1e-9));
   std::vector<Vec<2>> sites;
-  for (int c = -n; c <= n; ++c) sites.emplace_back(0.0, c * kWallGrainDiameter);
+  for (int c = -n; c <= n; ++c) sites.emplace_back(0.0, c * wall.spacing);
   return sites;
+}
+
+// A random layer: every site shifted within the target plane, uniformly over the disk (3D) or
+// segment (2D) of radius wall.jitter. Its own random stream, so the jet's sites do not depend on
+// whether the target is jittered.
+template <int D>
+void jitter_wall_sites(std::vector<Vec<D>>& sites, const WallSpec& wall, std::uint64_t seed) {
+  if (wall.jitter <= 0.0) return;
+  Random rng(seed ^ 0x9e3779b97f4a7c15ull);
+  for (Vec<D>& x : sites) {
+    if constexpr (D == 3) {
+      const double radius = wall.jitter * std::sqrt(rng.uniform());
+      const double angle = 2.0 * std::numbers::pi * rng.uniform();
+      x[0] += radius * std::cos(angle);
+      x[1] += radius * std::sin(angle);
+    } else {
+      x[1] += wall.jitter * (2.0 * rng.uniform() - 1.0);
+    }
+  }
 }
 
 // Grain diameters: all d, or exactly half d and half small_diameter in random order.
@@ -132,11 +155,12 @@ Particles<D> build_jet(const Scene& scene) {
   std::vector<Vec<D>> wall;
   if constexpr (D == 3) {
     sites = jet_sites_3d(scene.jet, front, rng);
-    wall = wall_sites_3d(scene.wall.diameter);
+    wall = wall_sites_3d(scene.wall);
   } else {
     sites = jet_sites_2d(scene.jet, front, rng);
-    wall = wall_sites_2d(scene.wall.diameter);
+    wall = wall_sites_2d(scene.wall);
   }
+  jitter_wall_sites<D>(wall, scene.wall, scene.run.seed);
   const std::vector<double> diameters = jet_diameters(scene.jet, rng);
   Vec<D> velocity = Vec<D>::Zero();
   velocity[Dim<D>::kJetAxis] = -scene.jet.speed;

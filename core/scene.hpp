@@ -15,6 +15,9 @@ enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
 // The target: tethered or fixed wall grains (spec §4), or a flat immovable plate in their front
 // face (event-driven backend).
 enum class WallKind { kTethered, kFixed, kPlate };
+// How the 3D target grains tile their disk: the study says only "one layer of DEM particles ...
+// a bumpy wall" (spec §4), so the lattice is an assumption (hexagonal, the densest, by default).
+enum class WallLattice { kHexagonal, kSquare };
 enum class Dispersity { kMono, kBi };
 // The 3D jet's cross section: the study's cylinder, or the rectangle of its anisotropy runs.
 enum class JetShape { kCylinder, kRectangle };
@@ -76,6 +79,11 @@ struct JetSpec {
 struct WallSpec {
   WallKind kind = WallKind::kTethered;
   double diameter = 22.0;   // D_tar (3D disk) or 2 R_tar (2D segment)
+  WallLattice lattice = WallLattice::kHexagonal;  // 3D; the 2D target is a row
+  double spacing = 1.0;     // centre distance of lattice neighbours (1: touching)
+  // A random layer: each site moved in the target plane by a uniform random vector of length at
+  // most `jitter` (drawn from run.seed), never so far that target grains overlap.
+  double jitter = 0.0;
   double spring = 10.0;     // k_w in m u0^2/d^2
   double damping_ratio = 5.0;  // eta_w / eta_n
 };
@@ -126,6 +134,7 @@ struct AnalysisSpec {
   int layers = 1;        // stacked layers of layer_height above the wall
   double layer_height = 5.0;
   HeightOrigin height_origin = HeightOrigin::kWallCentres;  // h = 0 of the layers
+  double scatter_radius = 0.0;  // where grains count as scattered; 0: from the target (run_analysis)
 };
 
 struct OutputSpec {

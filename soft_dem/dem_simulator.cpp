@@ -57,8 +57,11 @@ DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Parti
       threads_(scene.run.threads) {
   if (has_plate(scene)) plate_.emplace(scene.wall.diameter);
   if (kFriction && plate_) plate_shear_.assign(p_.size(), Vec<D>::Zero());
-  if (tethered_) wall_ = TetheredWall<D>(p_, scene.wall.spring,
-                                         scene.wall.damping_ratio * law_.c.eta_n);
+  // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
+  // beyond that.
+  if (tethered_)
+    wall_ = TetheredWall<D>(p_, scene.wall.spring, scene.wall.damping_ratio * law_.c.eta_n,
+                            (scene.wall.spacing + 2.0 * scene.wall.jitter) * (1.0 + 1e-6));
   const std::size_t n = p_.size();
   force_.assign(n, Vec<D>::Zero());
   force_prev_.assign(n, Vec<D>::Zero());

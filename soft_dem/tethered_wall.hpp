@@ -1,5 +1,5 @@
 // The tethered target [spec §4]: each wall grain is tied to its initial position and to its
-// touching wall neighbours by springs k_w (rest length = initial distance) with dashpots
+// neighbouring wall grains (lattice neighbours, those within `bond_range`) by springs k_w (rest length = initial distance) with dashpots
 // eta_w = damping_ratio * eta_n. Bonds are kept by grain id, so reordering is harmless.
 #pragma once
 
@@ -15,8 +15,9 @@ template <int D>
 class TetheredWall {
  public:
   TetheredWall() = default;
-  // `spring` is k_w, `damping` the dashpot rate eta_w (force = m eta_w * velocity, m = 1).
-  TetheredWall(const Particles<D>& p, double spring, double damping)
+  // `spring` is k_w, `damping` the dashpot rate eta_w (force = m eta_w * velocity, m = 1);
+  // wall grains at most `bond_range` apart are neighbours.
+  TetheredWall(const Particles<D>& p, double spring, double damping, double bond_range)
       : spring_(spring), damping_(damping) {
     std::vector<std::size_t> walls;
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -26,8 +27,7 @@ class TetheredWall {
       for (std::size_t b = a + 1; b < walls.size(); ++b) {
         const std::size_t i = walls[a], j = walls[b];
         const double rest = (p.position()[i] - p.position()[j]).norm();
-        const double touching = p.radius()[i] + p.radius()[j];
-        if (rest <= touching * (1.0 + 1e-6)) bonds_.push_back({p.id()[i], p.id()[j], rest});
+        if (rest <= bond_range) bonds_.push_back({p.id()[i], p.id()[j], rest});
       }
   }
 

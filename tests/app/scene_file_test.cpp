@@ -81,6 +81,18 @@ TEST(SceneFile, RectangularJetKeysParseAndRoundTrip) {
   EXPECT_EQ(scene_to_ini(reparsed(ini)), ini);
 }
 
+// Target lattices and the scatter radius are stored in the resolved scene.
+TEST(SceneFile, WallLatticeAndScatterRadiusKeysRoundTrip) {
+  const Scene s = load_scene(kScenes + "/jet3d.ini",
+                             {"wall.lattice=square", "wall.spacing=1.5", "wall.jitter=0.125",
+                              "analysis.scatter_radius=30"});
+  EXPECT_EQ(s.wall.lattice, WallLattice::kSquare);
+  const std::string ini = scene_to_ini(s);
+  for (const char* line : {"lattice = square", "spacing = 1.5", "jitter = 0.125", "scatter_radius = 30"})
+    EXPECT_NE(ini.find(line), std::string::npos) << line;
+  EXPECT_EQ(scene_to_ini(reparsed(ini)), ini);
+}
+
 // Expects an InputError whose message names `key` and contains `allowed`.
 void expect_refused(const std::vector<std::string>& overrides, const std::string& key,
                     const std::string& allowed) {
@@ -114,6 +126,16 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   // The rectangle is a 3D cross section (spec §5); the 2D jet is a strip.
   expect_refused({"scene.dimension=2", "jet.shape=rectangle"}, "jet.shape", "3D");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
+  // Target lattices (spec §4 leaves them open): no overlapping or ambiguous tether neighbours.
+  expect_refused({"wall.lattice=random"}, "wall.lattice", "hexagonal | square");
+  expect_refused({"wall.spacing=0.9"}, "wall.spacing", ">= 1");
+  expect_refused({"wall.jitter=0.1"}, "wall.jitter", "at most (wall.spacing - 1)/2 = 0");
+  expect_refused({"wall.spacing=1.2", "wall.jitter=0.15"}, "wall.jitter", "at most");
+  expect_refused({"wall.lattice=square", "wall.spacing=3", "wall.jitter=0.9"}, "wall.jitter",
+                 "next-nearest");
+  expect_refused({"scene.dimension=2", "wall.lattice=square"}, "wall.lattice", "3D lattice");
+  expect_refused({"analysis.scatter_radius=44"}, "analysis.scatter_radius",
+                 "smaller than region.radius = 44");
   expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");
 }

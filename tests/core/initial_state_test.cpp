@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <vector>
 
 namespace granjet {
@@ -198,6 +199,97 @@ TEST(InitialState, RectangularJetLayersHoldAreaTimesLatticeDensity) {
         EXPECT_NEAR(static_cast<double>(it->second.size()), area * 2.0 / (a * a), bound);
       EXPECT_GE(checked, 4);
     }
+}
+
+// Wall lattices (spec §4 leaves the layer's arrangement open): the target grains' positions.
+template <int D>
+std::vector<Vec<D>> wall_positions(const Particles<D>& p) {
+  std::vector<Vec<D>> x;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind()[i] == GrainKind::kWall) x.push_back(p.position()[i]);
+  return x;
+}
+
+template <class V>
+double min_pair_distance(const std::vector<V>& x) {
+  double d = 1e9;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = i + 1; j < x.size(); ++j) d = std::min(d, (x[i] - x[j]).norm());
+  return d;
+}
+
+TEST(InitialState, SquareWallLatticeHoldsTheIntegerPointsOfTheDisk) {
+  Scene s;
+  s.jet.grains = 100;
+  s.wall.lattice = WallLattice::kSquare;
+  s.wall.spacing = 1.25;
+  const std::vector<Vec<3>> wall = wall_positions(build_initial_state<3>(s));
+  // Sites (1.25 i, 1.25 j) with |.| <= 11, counted directly.
+  int expected = 0;
+  for (int i = -9; i <= 9; ++i)
+    for (int j = -9; j <= 9; ++j) expected += 1.5625 * (i * i + j * j) <= 121.0 + 1e-9;
+  EXPECT_EQ(static_cast<int>(wall.size()), expected);
+  EXPECT_NEAR(min_pair_distance(wall), 1.25, 1e-12);
+  for (const Vec<3>& x : wall) {
+    EXPECT_NEAR(std::remainder(x.x(), 1.25), 0.0, 1e-12);
+    EXPECT_NEAR(std::remainder(x.y(), 1.25), 0.0, 1e-12);
+  }
+}
+
+TEST(InitialState, HexagonalWallSpacingSetsTheNeighbourDistance) {
+  Scene s;
+  s.jet.grains = 100;
+  s.wall.spacing = 1.2;
+  const std::vector<Vec<3>> wall = wall_positions(build_initial_state<3>(s));
+  EXPECT_NEAR(min_pair_distance(wall), 1.2, 1e-12);
+  // Density of a hexagonal layer: 2/(sqrt 3 a^2) sites per unit area over the disk of radius 11.
+  const double expected = std::numbers::pi * 121.0 * 2.0 / (std::sqrt(3.0) * 1.44);
+  EXPECT_NEAR(static_cast<double>(wall.size()), expected, 0.05 * expected);
+}
+
+// A random layer: sites shifted by at most the jitter, never overlapping, the same for the same
+// seed, and the jet untouched (its own random stream).
+TEST(InitialState, JitteredWallStaysNearItsSitesWithoutOverlapAndLeavesTheJetAlone) {
+  Scene s;
+  s.jet.grains = 300;
+  s.wall.spacing = 1.3;
+  const Particles<3> plain = build_initial_state<3>(s);
+  s.wall.jitter = 0.15;
+  const Particles<3> a = build_initial_state<3>(s), b = build_initial_state<3>(s);
+  ASSERT_EQ(a.size(), plain.size());
+  double largest = 0.0, moved = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Vec<3> shift = a.position()[i] - plain.position()[i];
+    if (a.kind()[i] == GrainKind::kFree) {
+      EXPECT_EQ(shift.norm(), 0.0);
+      continue;
+    }
+    EXPECT_EQ(shift.z(), 0.0);
+    largest = std::max(largest, shift.norm());
+    moved += shift.norm() > 0.0;
+  }
+  EXPECT_LE(largest, 0.15);
+  EXPECT_GT(largest, 0.12);  // the shifts fill the disk of radius 0.15
+  EXPECT_EQ(moved, static_cast<double>(wall_positions(a).size()));
+  EXPECT_GE(min_pair_distance(wall_positions(a)), 1.0);
+  EXPECT_TRUE(std::equal(a.position().begin(), a.position().end(), b.position().begin()));
+}
+
+TEST(InitialState, Jitter2dShiftsTheRowAlongItself) {
+  Scene s;
+  s.dimension = 2;
+  s.jet.grains = 200;
+  s.jet.diameter = 30;
+  s.wall.diameter = 66;
+  s.wall.spacing = 1.2;
+  s.wall.jitter = 0.1;
+  const std::vector<Vec<2>> wall = wall_positions(build_initial_state<2>(s));
+  EXPECT_EQ(wall.size(), 55u);  // y = 1.2 c for |c| <= 27
+  for (const Vec<2>& x : wall) {
+    EXPECT_EQ(x.x(), 0.0);
+    EXPECT_LE(std::abs(std::remainder(x.y(), 1.2)), 0.1 + 1e-12);
+  }
+  EXPECT_GE(min_pair_distance(wall), 1.0);
 }
 
 TEST(InitialState, SameSeedSameJetOtherSeedOther) {
