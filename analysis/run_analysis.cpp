@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "analysis/free_streamline.hpp"
 #include "analysis/kinetic_theory.hpp"
 #include "core/plate_face.hpp"
 
@@ -39,6 +40,7 @@ double height_origin_position(HeightOrigin origin) {
 // F4.2) does not count its undisturbed grains at t = 0; inside the region cut (0.9 of it), so
 // grains are seen before their removal.
 double scatter_radius_of(const Scene& scene, double target_radius) {
+  if (scene.analysis.scatter_radius > 0.0) return scene.analysis.scatter_radius;
   const double beyond = std::max(1.5 * target_radius, scene.jet.outer_radius() + 1.0);
   return std::min(beyond, 0.9 * scene.region.radius);
 }
@@ -71,6 +73,8 @@ AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
                              : contact.restitution;
   c.scatter_radius = scatter_radius_of(scene, c.bins.target_radius);
   c.reference_azimuth = kShortSideAzimuth;
+  if (scene.dimension == 2 && scene.wall.kind == WallKind::kPlate)
+    c.free_streamline_psi0 = free_streamline::exit_angle(scene.wall.diameter / scene.jet.diameter);
   return c;
 }
 
@@ -105,7 +109,7 @@ void RunAnalysis<D>::sample(double time, const Particles<D>& particles) {
 template <int D>
 void RunAnalysis<D>::take(double time, const Particles<D>& particles,
                           std::span<const PairImpulse<D>> transfers, bool transfers_known) {
-  scattering_.observe(particles);
+  scattering_.observe(particles, time);
   if (in_window(time)) {
     if (open_ && transfers_known) {
       fields_.sample(particles, transfers, time - last_window_time_);
@@ -141,7 +145,12 @@ RunResult RunAnalysis<D>::finish() const {
     r.global.set("flatness_region." + axis, 0, vdf.flatness_region(a));
   }
   r.global.set("psi0", 0, scattering_.psi0());
+  const double slack = 0.5 * config_.sample_interval;  // as in_window
+  r.global.set("psi0_window", 0,
+               scattering_.psi0_between(config_.window_start - slack, config_.window_end + slack));
   if constexpr (D == 3) r.global.set("v2", 0, scattering_.v2());
+  if (!std::isnan(config_.free_streamline_psi0))
+    r.global.set("psi0_free_streamline", 0, config_.free_streamline_psi0);
   r.global.set("scattered", 0, static_cast<double>(scattering_.count()));
   r.global.set("samples", 0, fields_.samples());
   r.global.set("transfer_time", 0, fields_.transfer_time());

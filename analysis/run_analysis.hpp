@@ -16,6 +16,7 @@
 //   write_analysis_hdf5(file, all); to_json(all);       // field_writer.hpp, analysis_json.hpp
 #pragma once
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct AnalysisConfig {
   // phi = 0 of the azimuthal distribution (3D): towards the middle of a rectangular jet's short
   // side, e_x (for_scene).
   double reference_azimuth = 0.0;
+  // The exit angle of an ideal fluid jet on the same plate (spec §7b), for 2D plate targets;
+  // NaN otherwise.
+  double free_streamline_psi0 = std::numeric_limits<double>::quiet_NaN();
   int vdf_bins = 48;               // histogram of scaled velocities over [-vdf_range, vdf_range]
   double vdf_range = 6.0;
   int azimuth_bins = 36;
@@ -50,8 +54,9 @@ struct AnalysisConfig {
   // 0..5 d and 5..10 d cut into 10 bins across -R_tar..R_tar, window 180..300).
   // R_tar = wall.diameter/2; heights from analysis.height_origin (the target grains' centre
   // plane or their top surface); e-bar [2.55] for frictional grains; scattered grains are counted
-  // beyond max(1.5 R_tar, the jet's outer radius + 1 d), capped at 0.9 region.radius (inside the
-  // region cut, so they are seen before their removal).
+  // beyond analysis.scatter_radius, or when that is 0 beyond max(1.5 R_tar, the jet's outer
+  // radius + 1 d), capped at 0.9 region.radius (inside the region cut, so they are seen before
+  // their removal).
   static AnalysisConfig for_scene(const Scene& scene);
 };
 
@@ -61,8 +66,9 @@ struct RunResult {
   Table layout;   // per bin: FieldAccumulator::layout()
   Table fields;   // per bin: FieldAccumulator::fields()
   Table global;   // one row: flatness_bin.a and flatness_region.a (T5.1: scaled by each bin's
-                  // T_a, or by one T_a for the region), psi0, v2 (3D), scattered, samples,
-                  // transfer_time, window_start, window_end
+                  // T_a, or by one T_a for the region), psi0, psi0_window (of the grains
+                  // scattered within the time window), v2 (3D), scattered, samples,
+                  // transfer_time, window_start, window_end; psi0_free_streamline (2D plate)
   Table vdf;      // per histogram interval: "c" (its centre), "density.a" (each bin's scaling)
   Table azimuth;  // per interval of [0, 2 pi): "phi" (its centre), "dN_dphi" over its mean (3D)
 };

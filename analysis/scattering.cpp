@@ -42,7 +42,7 @@ double anisotropy_v2(std::span<const double> azimuths) {
 }
 
 template <int D>
-void ScatteringMeasurement<D>::observe(const Particles<D>& particles) {
+void ScatteringMeasurement<D>::observe(const Particles<D>& particles, double time) {
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (particles.kind()[i] == GrainKind::kWall) continue;
     const Vec<D>& x = particles.position()[i];
@@ -52,8 +52,17 @@ void ScatteringMeasurement<D>::observe(const Particles<D>& particles) {
     if (seen_[id]) continue;
     seen_[id] = true;
     velocity_.push_back(particles.velocity()[i]);
+    time_.push_back(time);
     if constexpr (D == 3) azimuth_.push_back(std::atan2(x.y(), x.x()) - reference_);
   }
+}
+
+template <int D>
+double ScatteringMeasurement<D>::psi0_between(double t0, double t1) const {
+  std::vector<Vec<D>> in_window;
+  for (std::size_t k = 0; k < velocity_.size(); ++k)
+    if (time_[k] >= t0 && time_[k] <= t1) in_window.push_back(velocity_[k]);
+  return scattering_angle<D>(in_window);
 }
 
 template <int D>

@@ -31,12 +31,16 @@ class ScatteringMeasurement {
   ScatteringMeasurement(double radius, double reference_azimuth)
       : radius_(radius), reference_(reference_azimuth) {}
 
-  void observe(const Particles<D>& particles);
+  // `time`: the snapshot's time, kept with each grain first seen in it.
+  void observe(const Particles<D>& particles, double time);
 
   std::size_t count() const { return velocity_.size(); }
   std::span<const Vec<D>> velocities() const { return velocity_; }
   std::span<const double> azimuths() const { return azimuth_; }  // 3D; empty in 2D
   double psi0() const { return scattering_angle<D>(velocity_); }
+  // psi0 of the grains first seen scattered in t0 <= t <= t1: the steady flow's, without the
+  // first impact's splash (the exact benchmark of spec §7b is a steady solution).
+  double psi0_between(double t0, double t1) const;
   double v2() const { return anisotropy_v2(azimuth_); }
   // dN/dphi over `bins` equal intervals of [0, 2 pi), divided by its mean (v0).
   std::vector<double> azimuthal_distribution(int bins) const;
@@ -46,6 +50,7 @@ class ScatteringMeasurement {
   double reference_;
   std::vector<bool> seen_;  // by grain id
   std::vector<Vec<D>> velocity_;
+  std::vector<double> time_;
   std::vector<double> azimuth_;
 };
 

@@ -129,7 +129,7 @@ TEST(Anisotropy, F4_3_V2SignFollowsTheElongationFromTheShortSide) {
       const double y = (along_x ? small : big) * std::sin(t);
       p.add(k, GrainKind::kFree, {x, y, 1.0}, {x, y, 0.0}, 0.5, 1.0);
     }
-    m.observe(p);
+    m.observe(p, 0.0);
     ASSERT_EQ(m.count(), 360u);
     EXPECT_NEAR(m.v2(), along_x ? 0.25 : -0.25, 1e-12);
   }

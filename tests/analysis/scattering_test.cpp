@@ -65,9 +65,9 @@ TEST(Scattering, MeasurementRecordsEachScatteredGrainOnce) {
   p.add(1, GrainKind::kFree, {0.0, -15.0, 1.0}, outgoing(1.0, -kPi / 2, 1.0), 0.5, 1.0);
   p.add(2, GrainKind::kFree, {3.0, 0.0, 1.0}, outgoing(0.1, 0.0, 1.0), 0.5, 1.0);  // inside
   p.add(3, GrainKind::kWall, {20.0, 0.0, 0.0}, Vec<3>::Zero(), 0.5, 1.0);          // wall
-  m.observe(p);
+  m.observe(p, 1.0);
   p.velocity()[0] = outgoing(0.2, kPi / 2, 1.0);  // seen again later: not recorded again
-  m.observe(p);
+  m.observe(p, 2.0);
   ASSERT_EQ(m.count(), 2u);
   EXPECT_NEAR(m.psi0(), 1.1, 1e-12);
   EXPECT_NEAR(m.v2(), 1.0, 1e-12);  // both on the reference axis: cos 2phi = 1
@@ -76,6 +76,21 @@ TEST(Scattering, MeasurementRecordsEachScatteredGrainOnce) {
   for (double x : dn) mean += x / dn.size();
   EXPECT_NEAR(mean, 1.0, 1e-12);
   EXPECT_EQ(dn[0] + dn[2], 4.0);  // phi = 0 and phi = pi
+}
+
+// The steady flow's psi0 counts only the grains first seen scattered inside the window.
+TEST(Scattering, Psi0BetweenKeepsTheGrainsSeenInTheWindow) {
+  ScatteringMeasurement<2> m(10.0, 0.0);
+  Particles<2> p;
+  p.add(0, GrainKind::kFree, {-1.0, 12.0}, {0.0, 1.0}, 0.5, 1.0);  // splash: along the wall
+  m.observe(p, 5.0);
+  p.add(1, GrainKind::kFree, {-5.0, -12.0}, {-1.0, -1.0}, 0.5, 1.0);  // steady: 45 deg
+  p.add(2, GrainKind::kFree, {-5.0, 14.0}, {-1.0, 1.0}, 0.5, 1.0);
+  m.observe(p, 50.0);
+  EXPECT_NEAR(m.psi0_between(40.0, 60.0), kPi / 4, 1e-12);
+  EXPECT_NEAR(m.psi0_between(0.0, 10.0), kPi / 2, 1e-12);
+  EXPECT_TRUE(std::isnan(m.psi0_between(60.0, 70.0)));
+  EXPECT_GT(m.psi0(), kPi / 4);  // the whole run includes the splash
 }
 
 // Two bins of different means and temperatures: after per-bin scaling the pooled Gaussian has
