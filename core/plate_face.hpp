@@ -31,14 +31,21 @@ class PlateFace {
     x[kAxis] = 0.0;
     return x.squaredNorm() <= radius_ * radius_;
   }
-  // Grain x's mirror image through the face: r_i - r_j then spans grain and image as for two
-  // grains in contact. The half behind the face lies outside every bin when the layers start at
-  // the face (analysis.height_origin = wall_surface); from the target grains' centre plane
-  // (wall_centres) it counts, as the segment to a target grain would.
-  Vec<D> mirror(Vec<D> x) const {
-    x[kAxis] = 2.0 * kPlateFace - x[kAxis];
+  // The point of the face, rim included, nearest to x: below x while x is over the face, else
+  // on the rim. A thin plate's edge is where grains passing beside a narrow plate touch it.
+  Vec<D> nearest_point(Vec<D> x) const {
+    x[kAxis] = 0.0;
+    const double lateral = x.norm();
+    if (lateral > radius_) x *= radius_ / lateral;
+    x[kAxis] = kPlateFace;
     return x;
   }
+  // Grain x's mirror image through its nearest face point: r_i - r_j then spans grain and image
+  // as for two grains in contact (over the face, the mirror image through the face plane). The
+  // half behind the face lies outside every bin when the layers start at the face
+  // (analysis.height_origin = wall_surface); from the target grains' centre plane (wall_centres)
+  // it counts, as the segment to a target grain would.
+  Vec<D> mirror(const Vec<D>& x) const { return 2.0 * nearest_point(x) - x; }
   // The unit normal from the face towards the grains in front of it.
   static Vec<D> outward() {
     Vec<D> n = Vec<D>::Zero();

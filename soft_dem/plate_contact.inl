@@ -2,9 +2,11 @@
 // explicit instantiations): the grain-plate contact of wall.kind = plate.
 #pragma once
 
-// The plate is a face only (core/plate_face.hpp): a grain touches it while its centre is over
-// the face and within its radius of the face plane. The contact point is on the face, so the
-// lever arm is the centre's height.
+// The plate is a thin disk (3D) or segment (2D), core/plate_face.hpp: a grain touches it when
+// the face point nearest its centre, on the face or its rim, lies within its radius. Over the
+// face the normal is the face's (either side: a grain that got behind a narrow plate meets its
+// back); beside it, the rim's, so a grain coming in over the edge is pushed off smoothly instead
+// of finding itself deep in the face. The lever arm is the distance to that point.
 template <int D, bool kFriction, bool kMono, class Space>
 template <class OnContact, class OnApart>
 void DemSimulator<D, kFriction, kMono, Space>::plate_contact_of(std::size_t i,
@@ -12,12 +14,15 @@ void DemSimulator<D, kFriction, kMono, Space>::plate_contact_of(std::size_t i,
                                                               OnApart&& on_apart) const {
   const Vec<D>& x = p_.position()[i];
   const double r = radius_of(p_.radius(), i);
-  const double height = plate_->height(x);
-  if (height >= r || !plate_->over_face(x)) {
+  const Vec<D> from_face = x - plate_->nearest_point(x);
+  const double distance = from_face.norm();
+  if (distance >= r) {
     on_apart();
     return;
   }
-  const ContactGeometry<D> g{PlateFace<D>::outward(), r - height, height, 0.0};
+  // A centre exactly on the face has no direction to it: push it to the front.
+  const Vec<D> n = distance > 0.0 ? Vec<D>(from_face / distance) : PlateFace<D>::outward();
+  const ContactGeometry<D> g{n, r - distance, distance, 0.0};
   Vec<D> v_rel = p_.velocity()[i];
   if constexpr (kFriction) v_rel -= Dim<D>::spin_cross(g.lever_i * p_.spin()[i], g.n);
   on_contact(g, v_rel);
