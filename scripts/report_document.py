@@ -91,8 +91,10 @@ def read_text(text_dir, name):
 
 
 def verdict_line(after_text):
-    """The first line of the verdict part, for the closing summary."""
-    return after_text.split("\n", 1)[0].strip() if after_text else "Verdict: (none written)"
+    """The verdict's first paragraph on one line, for the closing summary."""
+    if not after_text:
+        return "Verdict: (none written)"
+    return " ".join(after_text.split("\n\n", 1)[0].split())
 
 
 # ---- Sections --------------------------------------------------------------------------------
