@@ -139,6 +139,11 @@ const std::vector<Key>& keys() {
                          kPositive));
     k.push_back(real_key("contact.damping_ratio", "eta_t / eta_n", FIELD(contact.damping_ratio),
                          kNonNegative));
+    k.push_back(choice_key<bool>(
+        "contact.clamp_normal",
+        "true: the normal force never pulls (F_n >= 0), a choice the study leaves open; it "
+        "raises e above [3.5]",
+        FIELD(contact.clamp_normal), {{"false", false}, {"true", true}}));
     k.push_back(real_key("run.t_end", "simulated time in d/u0", FIELD(run.t_end), kPositive));
     k.push_back(real_key("run.dt", "time step (0: 0.02 t_c, the study's)", FIELD(run.dt),
                          kNonNegative));

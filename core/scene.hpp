@@ -36,6 +36,10 @@ struct ContactSpec {
   double friction = 0.2;       // mu_p
   double spring_ratio = 0.2;   // k_t / k_n
   double damping_ratio = 0.5;  // eta_t / eta_n
+  // Whether the normal force may pull: the linear dashpot of [3.1] turns attractive at the end
+  // of a contact (the overlap still positive, closing faster than k_n/eta_n allows). The study
+  // does not say whether it clamped it at zero; [3.4]-[3.5] assume it did not.
+  bool clamp_normal = false;
 };
 
 struct RunSpec {

@@ -1,6 +1,8 @@
 // Linear spring-dashpot coefficients from the scene's (e, t_c) [3.4]-[3.5].
 #pragma once
 
+#include <limits>
+
 #include "core/scene.hpp"
 
 namespace granjet::dem {
@@ -13,6 +15,9 @@ struct ContactCoefficients {
   double kt = 0.0;     // tangential spring k_t = spring_ratio k_n
   double eta_t = 0.0;  // tangential dashpot rate eta_t = damping_ratio eta_n
   double mu = 0.0;     // Coulomb friction mu_p
+  // The least normal force: -infinity (the linear law of [3.1], attraction allowed) or 0
+  // (contact.clamp_normal). A floor, so the unclamped law is bit for bit the plain one.
+  double normal_floor = -std::numeric_limits<double>::infinity();
 };
 
 // [3.4] t_c = pi / sqrt(2 k_n/m - eta_n^2) and [3.5] e = exp(-t_c eta_n), for two grains of

@@ -3,6 +3,7 @@
 // static traits let the loop drop history and rotation when the scene is frictionless.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -64,8 +65,9 @@ struct LinearSpringDashpot {
   V force(const ContactGeometryOf<V>& g, const std::type_identity_t<V>& v_rel,
           std::type_identity_t<V>& shear) const {
     const double v_n = v_rel.dot(g.n);
-    // [3.1] normal: F_n = -k_n u_n - eta_n du_n/dt with u_n = -overlap.
-    const double f_n = c.kn * g.overlap - c.eta_n * v_n;
+    // [3.1] normal: F_n = -k_n u_n - eta_n du_n/dt with u_n = -overlap; never below the floor
+    // (contact.clamp_normal).
+    const double f_n = std::max(c.normal_floor, c.kn * g.overlap - c.eta_n * v_n);
     V f = f_n * g.n;
     if constexpr (kFriction) {
       const V v_t = v_rel - v_n * g.n;

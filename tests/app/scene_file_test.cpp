@@ -81,14 +81,16 @@ TEST(SceneFile, RectangularJetKeysParseAndRoundTrip) {
   EXPECT_EQ(scene_to_ini(reparsed(ini)), ini);
 }
 
-// Target lattices and the scatter radius are stored in the resolved scene.
+// Target lattices, the scatter radius and the normal-force clamp are stored in the resolved
+// scene.
 TEST(SceneFile, WallLatticeAndScatterRadiusKeysRoundTrip) {
   const Scene s = load_scene(kScenes + "/jet3d.ini",
                              {"wall.lattice=square", "wall.spacing=1.5", "wall.jitter=0.125",
-                              "analysis.scatter_radius=30"});
+                              "analysis.scatter_radius=30", "contact.clamp_normal=true"});
   EXPECT_EQ(s.wall.lattice, WallLattice::kSquare);
   const std::string ini = scene_to_ini(s);
-  for (const char* line : {"lattice = square", "spacing = 1.5", "jitter = 0.125", "scatter_radius = 30"})
+  for (const char* line : {"lattice = square", "spacing = 1.5", "jitter = 0.125", "scatter_radius = 30",
+                           "clamp_normal = true"})
     EXPECT_NE(ini.find(line), std::string::npos) << line;
   EXPECT_EQ(scene_to_ini(reparsed(ini)), ini);
 }
@@ -127,6 +129,7 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"scene.dimension=2", "jet.shape=rectangle"}, "jet.shape", "3D");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
   // Target lattices (spec §4 leaves them open): no overlapping or ambiguous tether neighbours.
+  expect_refused({"contact.clamp_normal=yes"}, "contact.clamp_normal", "false | true");
   expect_refused({"wall.lattice=random"}, "wall.lattice", "hexagonal | square");
   expect_refused({"wall.spacing=0.9"}, "wall.spacing", ">= 1");
   expect_refused({"wall.jitter=0.1"}, "wall.jitter", "at most (wall.spacing - 1)/2 = 0");
