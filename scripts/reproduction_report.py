@@ -1340,7 +1340,7 @@ def hc_plate(ctx, s, plate):
     exact = sorted({(r["L_over_R"], r["psi0_exact_deg"]) for r in rows.values()
                     if r["psi0_exact_deg"] is not None})
     if exact:
-        ax.plot(*zip(*exact), "k-", lw=1, label="free streamline (spec §7b)")
+        ax.plot(*zip(*exact), "kx:", lw=0.8, label="free streamline (spec §7b) at the runs' L/R")
     series = sorted({(r["jet"], b) for r in rows.values()
                      for b in ("event_driven", "soft_dem") if f"psi0_{b}_deg" in r})
     for k, (jet, backend) in enumerate(series):
