@@ -185,13 +185,14 @@ void EdSimulator<D>::collide(std::uint32_t i, std::uint32_t j) {
   }
 }
 
-// [2.1]-[2.2] against the plate: an infinite-mass partner at rest, normal k towards the face.
+// [2.1]-[2.2] against the plate: an infinite-mass partner at rest, normal k towards the face
+// point nearest the grain (on the face, or a 2D end point).
 template <int D>
 void EdSimulator<D>::hit_plate(std::uint32_t i) {
   Flight<D>& f = flight_[i];
   f.stream_to(clock_);
-  const Vec<D> k = Plate<D>::inward();
-  const double v_n = k.dot(f.v);  // > 0: predicted only for a grain closing on the face
+  const Vec<D> k = plate_->inward(f.x);
+  const double v_n = k.dot(f.v);  // > 0: predicted only for a grain closing on the plate
   if (verify_ == Verification::kOn) check_plate_contact(i);
   const double e = restitution_(v_n, clock_ - last_collision_[i], kNever);
   Vec<D> plate_v = Vec<D>::Zero();
@@ -473,14 +474,15 @@ void EdSimulator<D>::check_contact(std::uint32_t i, std::uint32_t j, double dist
                       stats_.events, origin_ + clock_, {grains_.id()[i], grains_.id()[j]});
 }
 
-// At the face: the grain comes in over it (a slide over the edge is through the plane already).
+// At the plate: the grain's surface reaches its nearest face point (closer only when it slid
+// in over a 3D edge, through the plane already).
 template <int D>
 void EdSimulator<D>::check_plate_contact(std::uint32_t i) const {
   const Flight<D>& f = flight_[i];
-  const double height = plate_->height(f.x);
-  if (height > (1.0 + kContactTolerance) * f.radius || !plate_->over_face(f.x))
-    throw BlowUpError("plate collision at height " + std::to_string(height) + " instead of " +
-                          std::to_string(f.radius),
+  const double distance = (f.x - plate_->nearest_point(f.x)).norm();
+  if (distance > (1.0 + kContactTolerance) * f.radius)
+    throw BlowUpError("plate collision at distance " + std::to_string(distance) +
+                          " instead of " + std::to_string(f.radius),
                       stats_.events, origin_ + clock_, {grains_.id()[i]});
 }
 
@@ -491,10 +493,13 @@ void EdSimulator<D>::check_no_overlaps() const {
   for (std::uint32_t i = 0; i < flight_.size(); ++i) {
     if (!alive_[i] || fixed(i)) continue;
     const Vec<D> x_i = flight_[i].position_at(now);
-    if (plate_ && plate_->over_face(x_i)) {
-      const double height = plate_->height(x_i);
-      if (height >= 0.0 && height < (1.0 - kContactTolerance) * flight_[i].radius)
-        throw BlowUpError("overlap with the plate: height " + std::to_string(height),
+    // In front of the face, or (2D) beside it, where its end points count; not behind it.
+    const bool modelled =
+        plate_ && (plate_->over_face(x_i) ? plate_->height(x_i) >= 0.0 : D == 2);
+    if (modelled) {
+      const double distance = (x_i - plate_->nearest_point(x_i)).norm();
+      if (distance < (1.0 - kContactTolerance) * flight_[i].radius)
+        throw BlowUpError("overlap with the plate: distance " + std::to_string(distance),
                           stats_.events, time_, {grains_.id()[i]});
     }
     cells_.gather(i, hood);

@@ -3,12 +3,15 @@
 // jet. A grain that reaches the face collides with it by [2.1]-[2.2] with an infinite-mass
 // partner: the normal velocity is reversed and scaled by e, the tangential one kept.
 //
-// The plate is a face only: a grain collides when its centre is over the face (within the
-// plate's radius of the jet axis) and its surface reaches the face plane. Its edge has no rim,
-// so a grain whose centre passes beside the edge flies on however close it comes, and its back
-// is not modelled: a grain behind the face plane (it got there past the edge) never collides.
-// A grain whose centre comes over the face while its surface is already through the plane
-// (sliding in over the edge) collides at once, so no grain passes through the face.
+// A grain collides with the face when its centre is over it (within the plate's radius of the
+// jet axis) and its surface reaches the face plane. In 2D the segment's two end points are its
+// rim, as for the soft plate (core/plate_face.hpp): a grain passing beside the edge collides
+// with the end point it comes within its radius of, along the line from the point to its
+// centre. The 3D rim (a circle, whose collision time solves a quartic) is not modelled yet: a
+// grain whose centre passes beside a disk's edge flies on however close it comes. The back is
+// not modelled: a grain behind the face plane (it got there past the edge) never collides with
+// the face. A grain whose centre comes over the face while its surface is already through the
+// plane (sliding in over a 3D edge) collides at once, so no grain passes through the face.
 #pragma once
 
 #include <algorithm>
@@ -31,6 +34,12 @@ class Plate : public PlateFace<D> {
   // Time until the grain (centre x at its own time, velocity v, radius r) touches the face, or
   // kNever.
   double contact_delay(const Vec<D>& x, const Vec<D>& v, double r) const {
+    if constexpr (D == 2) return std::min(face_delay(x, v, r), rim_delay(x, v, r));
+    return face_delay(x, v, r);
+  }
+
+  // Time until the grain's surface reaches the face plane with its centre over the face.
+  double face_delay(const Vec<D>& x, const Vec<D>& v, double r) const {
     const double height = this->height(x), closing = -v[kAxis];
     if (!(closing > 0.0) || height < 0.0) return kNever;  // receding, or behind the face
     const double reach = std::max(0.0, (height - r) / closing);
@@ -52,9 +61,30 @@ class Plate : public PlateFace<D> {
     return when <= leave && when < through ? when : kNever;
   }
 
-  // The unit normal from a grain in front of the face towards it (the k of [2.1]).
-  static Vec<D> inward() {
-    Vec<D> k = Vec<D>::Zero();
+  // 2D: time until the grain touches an end point of the segment while its centre is beside the
+  // segment (over it, the face comes first), or kNever.
+  double rim_delay(const Vec<D>& x, const Vec<D>& v, double r) const
+    requires(D == 2)
+  {
+    double first = kNever;
+    for (const double side : {-1.0, 1.0}) {
+      Vec<D> end = Vec<D>::Zero();
+      end[kAxis] = kPlateFace;
+      end[1 - kAxis] = side * this->radius_;
+      const PairQuadratic q = pair_quadratic(Vec<D>(x - end), v, r);
+      const double t = ed::contact_delay(q.b, q.c, q.a);
+      if (t < first && std::abs((x + t * v)[1 - kAxis]) >= this->radius_) first = t;
+    }
+    return first;
+  }
+
+  // The unit normal from a grain at x, touching, towards the plate (the k of [2.1]): towards
+  // its nearest point, the face's normal over the face and the line to an end point beside it.
+  Vec<D> inward(const Vec<D>& x) const {
+    const Vec<D> to_plate = this->nearest_point(x) - x;
+    const double distance = to_plate.norm();
+    if (distance > 0.0) return to_plate / distance;
+    Vec<D> k = Vec<D>::Zero();  // a centre on the face itself: push it back to the front
     k[kAxis] = -1.0;
     return k;
   }
