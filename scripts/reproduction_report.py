@@ -618,23 +618,31 @@ def draw_against_phi(ax, ctx, result_id, quantity, theory, positive=True):
     ax.set(xlabel=r"$\phi$", yscale="log" if positive else "linear")
 
 
-def section_f5_5(ctx):
-    s = ctx.section("F5.5", "P/(n T_g) against phi and the kinetic theory [5.2]")
-    points = ctx.points_for("F5.5")
-    if not describe_groups(s, ctx.campaign, ctx.groups_for("F5.5")):
+def kinetic_theory_section(ctx, rid, title, field, theory, label, ylabel, figure, caption):
+    """A measured field against its kinetic-theory curve over phi, every ring and phi~0 (F5.5,
+    F5.9): the figure, the table of measured/theory and its summary."""
+    s = ctx.section(rid, title)
+    if not describe_groups(s, ctx.campaign, ctx.groups_for(rid)):
         return s
-    s.add(seeds_note(points))
+    s.add(seeds_note(ctx.points_for(rid)))
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    draw_against_phi(ax, ctx, "F5.5", "P_over_nT", theory_5_2)
-    ax.set_ylabel(r"$P/(n T_g)$")
+    draw_against_phi(ax, ctx, rid, field, theory)
+    ax.set_ylabel(ylabel)
     ax.legend(fontsize=7)
-    s.add_figure(ctx.figures.save(fig, "F5_5_eos"), "P/(n T_g) against phi, every ring and "
-                 "phi~0 (marker), blue frictionless, orange frictional; lines [5.2]+[5.3]")
-    table = kinetic_theory_rows(ctx, "F5.5", "P_over_nT", theory_5_2, "P/(n T_g)")
+    s.add_figure(ctx.figures.save(fig, figure), caption)
+    table = kinetic_theory_rows(ctx, rid, field, theory, label)
     if table:
         s.add_table(table)
-        s.compare(deviation_summary(table, "P/(n T_g)"))
+        s.compare(deviation_summary(table, label))
     return s
+
+
+def section_f5_5(ctx):
+    return kinetic_theory_section(
+        ctx, "F5.5", "P/(n T_g) against phi and the kinetic theory [5.2]", "P_over_nT",
+        theory_5_2, "P/(n T_g)", r"$P/(n T_g)$", "F5_5_eos",
+        "P/(n T_g) against phi, every ring and phi~0 (marker), blue frictionless, orange "
+        "frictional; lines [5.2]+[5.3]")
 
 
 def deviation_summary(table, label):
@@ -849,23 +857,11 @@ def section_t5_2(ctx):
 
 
 def section_f5_9(ctx):
-    s = ctx.section("F5.9", "dimensionless shear viscosity eta* against phi and [5.6]")
-    points = ctx.points_for("F5.9")
-    if not describe_groups(s, ctx.campaign, ctx.groups_for("F5.9")):
-        return s
-    s.add(seeds_note(points))
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    draw_against_phi(ax, ctx, "F5.9", "eta_star", theory_5_6)
-    ax.set_ylabel(r"$\eta^*$")
-    ax.legend(fontsize=7)
-    s.add_figure(ctx.figures.save(fig, "F5_9_viscosity"), "eta* (eta over the dilute "
-                 "5/(16 d^2) sqrt(m T_g/pi)) against phi; lines [5.6]; negative values are off "
-                 "the log axis")
-    table = kinetic_theory_rows(ctx, "F5.9", "eta_star", theory_5_6, "eta*")
-    if table:
-        s.add_table(table)
-        s.compare(deviation_summary(table, "eta*"))
-    return s
+    return kinetic_theory_section(
+        ctx, "F5.9", "dimensionless shear viscosity eta* against phi and [5.6]", "eta_star",
+        theory_5_6, "eta*", r"$\eta^*$", "F5_9_viscosity",
+        "eta* (eta over the dilute 5/(16 d^2) sqrt(m T_g/pi)) against phi; lines [5.6]; "
+        "negative values are off the log axis")
 
 
 # ---- Chapter 6: the 2D jet ------------------------------------------------------------------
