@@ -6,7 +6,8 @@ groups added to the file after the campaign ran are listed as not run. The files
 the campaign writes them: DIR/<group>/<point>.h5 (the ensemble of the point's seeds, read with
 plot_analysis.Analysis), DIR/<group>/<point>.seed<N>.{h5,json,ini} (one run each: its analysis,
 summary and resolved scene) and DIR/manifest.json (invocations: host, commit, start times;
-runs: start, finish, wall seconds).
+runs: start, finish, wall seconds). Run files packed by scripts/campaign_archive.py have no
+frames; the one measure taken from frames (FE.1's layer_a_series) is stored in them instead.
 """
 import configparser
 import datetime
@@ -290,6 +291,78 @@ class Campaign:
     def close(self):
         for p in self.all_points():
             p.close()
+
+
+# ---- FE.1: T_g(t) in layer (a), from a run's frames ------------------------------------------
+# Where scripts/campaign_archive.py stores layer_a_series of a run whose frames it drops.
+LAYER_A_SERIES = "archive/layer_a_temperature"
+
+
+class ResolvedScene:
+    """The keys of one run's resolved scene (INI text, e.g. the file's
+    /parameters/granjet/scene), with Point's param/number: what layer_a_series needs of a run
+    without its campaign file."""
+
+    def __init__(self, ini_text):
+        self.ini = configparser.ConfigParser(interpolation=None, inline_comment_prefixes=("#",))
+        self.ini.read_string(ini_text)
+
+    @classmethod
+    def of_run_file(cls, path):
+        with h5py.File(path, "r") as f:
+            return cls(plot_analysis.text(f["parameters/granjet/scene"][()]))
+
+    def param(self, key, fallback=None):
+        section, name = key.split(".", 1)
+        return self.ini.get(section, name, fallback=fallback)
+
+    def number(self, key, fallback=math.nan):
+        value = self.param(key)
+        return float(value) if value not in (None, "") else fallback
+
+
+def frame_count(f):
+    """Frames stored in an open run file (0 without /particles, or packed without frames)."""
+    grains = f.get("particles/all")
+    return 0 if grains is None or "position" not in grains else grains["position/time"].shape[0]
+
+
+def layer_a_series(path, point):
+    """T_g(t) = sum m |v - <v>|^2 / (2 N) of the jet grains with centres in layer (a) and
+    -dy < y < 0 (dy = R_tar/5), from the stored frames inside the analysis window; the same
+    measure as tests/stability/burst_test.cpp, heights from the scene's height origin. A file
+    without frames gives the series stored at LAYER_A_SERIES (campaign_archive.py), else none.
+    point: a Point or ResolvedScene (param, number)."""
+    with h5py.File(path, "r") as f:
+        if frame_count(f) == 0:
+            stored = f.get(LAYER_A_SERIES)
+            if stored is None:
+                return np.empty(0), np.empty(0)
+            return stored["time"][()], stored["value"][()]
+        origin = 0.5 if point.param("analysis.height_origin") == "wall_surface" else 0.0
+        height = point.number("analysis.layer_height", 5.0)
+        dy = point.number("wall.diameter") / 10
+        start, end = point.number("analysis.window_start"), point.number("analysis.window_end")
+        grains = f["particles/all"]
+        times = grains["position/time"][()]
+        ids = grains["id/value"]
+        target = set(ids[0][np.all(grains["velocity/value"][0] == 0, axis=1)].tolist())
+        frames = np.nonzero((times >= start - 1e-9) & (times <= end + 1e-9))[0]
+        series = [frame_temperature(grains, k, target, origin, height, dy) for k in frames]
+    return times[frames], np.array(series)
+
+
+def frame_temperature(grains, frame, target, origin, height, dy):
+    ids = grains["id/value"][frame]
+    x = grains["position/value"][frame]
+    v = grains["velocity/value"][frame]
+    h = x[:, 0] - origin
+    inside = (ids >= 0) & (h > 0) & (h <= height) & (x[:, 1] > -dy) & (x[:, 1] < 0)
+    inside &= ~np.isin(ids, list(target))
+    if inside.sum() < 2:
+        return math.nan
+    u = v[inside] - v[inside].mean(axis=0)
+    return float((u ** 2).sum() / (2 * inside.sum()))  # m = 1 (spec §2, equal masses)
 
 
 # ---- What ran where, when and with which commit ---------------------------------------------

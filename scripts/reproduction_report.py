@@ -30,7 +30,6 @@ import math
 import os
 import sys
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
@@ -1146,37 +1145,6 @@ def section_f6_16(ctx):
 
 
 # ---- FE.1: T_g(t) in layer (a) -------------------------------------------------------------
-def layer_a_series(path, point):
-    """T_g(t) = sum m |v - <v>|^2 / (2 N) of the jet grains with centres in layer (a) and
-    -dy < y < 0 (dy = R_tar/5), from the stored frames inside the analysis window; the same
-    measure as tests/stability/burst_test.cpp, heights from the scene's height origin."""
-    origin = 0.5 if point.param("analysis.height_origin") == "wall_surface" else 0.0
-    height = point.number("analysis.layer_height", 5.0)
-    dy = point.number("wall.diameter") / 10
-    start, end = point.number("analysis.window_start"), point.number("analysis.window_end")
-    with h5py.File(path, "r") as f:
-        grains = f["particles/all"]
-        times = grains["position/time"][()]
-        ids = grains["id/value"]
-        target = set(ids[0][np.all(grains["velocity/value"][0] == 0, axis=1)].tolist())
-        frames = np.nonzero((times >= start - 1e-9) & (times <= end + 1e-9))[0]
-        series = [frame_temperature(grains, k, target, origin, height, dy) for k in frames]
-    return times[frames], np.array(series)
-
-
-def frame_temperature(grains, frame, target, origin, height, dy):
-    ids = grains["id/value"][frame]
-    x = grains["position/value"][frame]
-    v = grains["velocity/value"][frame]
-    h = x[:, 0] - origin
-    inside = (ids >= 0) & (h > 0) & (h <= height) & (x[:, 1] > -dy) & (x[:, 1] < 0)
-    inside &= ~np.isin(ids, list(target))
-    if inside.sum() < 2:
-        return math.nan
-    u = v[inside] - v[inside].mean(axis=0)
-    return float((u ** 2).sum() / (2 * inside.sum()))  # m = 1 (spec §2, equal masses)
-
-
 def burst_measures(series):
     """<T_g>, std, peak and CV of one T_g(t)."""
     t = series[np.isfinite(series)]
@@ -1200,7 +1168,7 @@ def section_fe1(ctx):
         per_seed, drawn = [], False
         for seed in p.seeds_done():
             path = p.seed_path(seed, "h5")
-            times, series = layer_a_series(path, p)
+            times, series = cd.layer_a_series(path, p)
             per_seed.append(burst_measures(series))
             if not drawn and series.size:
                 label = f"$t_c$ = {p.number('contact.contact_time'):g} (seed {seed})"
