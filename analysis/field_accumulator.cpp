@@ -8,8 +8,27 @@
 //                                                     eta over the dilute viscosity
 //   I, sigma_Y (3D); I_s, I_T (2D)                    inertial numbers, extrapolated yield stress
 //   flatness.a                                        <c^4>/<c^2>^2 of the bin's scaled velocities
+// The contact stress split by contact type and direction, and the contacts' geometry (issue 13),
+// all from the same transfers and segment fractions A as stress_contact, in the local frame:
+//   stress_contact_wall.ab     the part of stress_contact from transfers with a target (wall)
+//                              grain or the plate (partner kPlateId) on either side; the flowing
+//                              grains' own part is stress_contact - stress_contact_wall
+//   stress_contact_normal.ab   the part from the normal component J_n = (J.n) n of each
+//                              impulse, n = (r_i - r_j)/|r_i - r_j| along the line of centres
+//                              (plate: grain and mirror image); J_n r^T = (J.r) n n^T is
+//                              symmetric. The tangential part is stress_contact minus this
+//   contact_density            sum A / (samples V), samples those that cover time (not the
+//                              window's first): soft DEM, the contacts present at the sample
+//                              instants per unit volume; event-driven, the collisions between
+//                              consecutive samples per unit volume (divide by
+//                              analysis.sample_interval for a collision rate). Not comparable
+//                              across backends
+//   fabric.ab                  sum A n n^T / sum A, the fabric tensor of the contact normals
+//                              (trace 1); NaN for a bin without transfers
+// Like stress_contact, all of them are NaN when no transfer time was booked (stored frames).
 #include "analysis/field_accumulator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -46,8 +65,14 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
   const BinGrid& grid = coords_.grid();
   const auto x = particles.position();
   const auto v = particles.velocity();
+  const auto id = particles.id();
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (particles.kind()[i] == GrainKind::kWall) continue;
+    if (particles.kind()[i] == GrainKind::kWall) {
+      const auto k = static_cast<std::size_t>(std::max<GrainId>(id[i], 0));
+      if (k >= wall_.size()) wall_.resize(k + 1, 0);  // grows to the largest wall id, once
+      wall_[k] = 1;
+      continue;
+    }
     const double m = particles.mass()[i];
     coords_.for_each_share(x[i], particles.radius()[i],
                            [&](int bin, double volume) { bins_[bin].volume += volume; });
@@ -73,16 +98,30 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
   }
   // [C.31]-[C.33]: each transfer's J r^T, r = r_i - r_j, shared by the length fraction A of the
   // segment r_i -> r_j in each bin, rotated to the local frame at the middle of that stretch.
+  // Its normal part (J.n) n r^T = (J.r) n n^T and the fabric share A n n^T go the same way.
   for (const PairImpulse<D>& t : transfers) {
-    const Mat w = t.impulse * (t.position_i - t.position_j).transpose();
+    const Vec<D> r = t.position_i - t.position_j;
+    const Mat w = t.impulse * r.transpose();
+    const double r2 = r.squaredNorm();
+    const Mat nn = r2 > 0.0 ? Mat(r * r.transpose() / r2) : Mat::Zero();
+    const double j_r = t.impulse.dot(r);
+    const bool wall = is_wall(t.i) || is_wall(t.j);
     clip_segment(coords_, t.position_i, t.position_j, scratch_, [&](int bin, double s0, double s1) {
       const Vec<D> mid = t.position_i + 0.5 * (s0 + s1) * (t.position_j - t.position_i);
       const auto frame = coords_.frame(mid);
-      bins_[bin].contact += (s1 - s0) * frame * w * frame.transpose();
-      bins_[bin].contact_xyz += (s1 - s0) * w;
+      BinSums& b = bins_[bin];
+      b.contact += (s1 - s0) * frame * w * frame.transpose();
+      b.contact_xyz += (s1 - s0) * w;
+      // The same expression as the total's, so a bin of wall transfers only matches it exactly.
+      if (wall) b.contact_wall += (s1 - s0) * frame * w * frame.transpose();
+      const Mat fabric = (s1 - s0) * frame * nn * frame.transpose();
+      b.fabric += fabric;
+      b.contact_normal += j_r * fabric;
+      b.segments += s1 - s0;
     });
   }
   ++samples_;
+  if (elapsed > 0.0) ++transfer_samples_;
   transfer_time_ += elapsed;
 }
 
@@ -151,6 +190,12 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
     if constexpr (Coordinates::kCurvilinear)
       set_tensor(t, "stress_xyz", bin, Coordinates::kCartesianAxes,
                  Mat(kinetic_xyz + s.contact_xyz * contact_norm));
+    set_tensor(t, "stress_contact_wall", bin, axes, Mat(s.contact_wall * contact_norm));
+    set_tensor(t, "stress_contact_normal", bin, axes, Mat(s.contact_normal * contact_norm));
+    t.set("contact_density", bin,
+          transfer_time_ > 0.0 ? s.segments / (transfer_samples_ * volume) : kNaN);
+    set_tensor(t, "fabric", bin, axes,
+               s.segments > 0.0 ? Mat(s.fabric / s.segments) : Mat::Constant(kNaN));
     t.set("P", bin, pressure);
     t.set("P_over_nT", bin, pressure / (n * t_g));  // compare with [5.2]
 

@@ -15,10 +15,12 @@
 // are kept too. Fluctuations are taken about the window's mean velocity of the bin (momentum
 // over mass summed over the window), which needs only sums and avoids the (N-1)/N bias of a
 // per-snapshot mean in sparse bins. Wall grains are not part of the flow fields; their contacts
-// with flowing grains do count in the contact stress.
+// with flowing grains do count in the contact stress, and their part of it is kept apart
+// (stress_contact_wall), beside the normal part and the fabric of the transfers.
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -77,7 +79,16 @@ class FieldAccumulator {
     Mat second_xyz = Mat::Zero();
     Mat contact = Mat::Zero();  // sum J r^T A, local frame
     Mat contact_xyz = Mat::Zero();
+    Mat contact_wall = Mat::Zero();    // sum J r^T A of transfers with a wall grain or plate
+    Mat contact_normal = Mat::Zero();  // sum (J.n) n r^T A, local frame
+    Mat fabric = Mat::Zero();          // sum A n n^T, local frame
+    double segments = 0.0;             // sum A
   };
+
+  // Whether partner `id` is a target (wall) grain or the plate (kPlateId, the only negative id).
+  bool is_wall(GrainId id) const {
+    return id < 0 || (static_cast<std::size_t>(id) < wall_.size() && wall_[id] != 0);
+  }
 
   BinSpec spec_;
   Coordinates coords_;
@@ -85,8 +96,13 @@ class FieldAccumulator {
   std::vector<HalfCellSums<D>> half_cells_;
   VelocityDistribution<D> vdf_;
   int samples_ = 0;
+  int transfer_samples_ = 0;  // samples that cover time (elapsed > 0)
   double transfer_time_ = 0.0;
   std::vector<double> scratch_;
+  // Indexed by grain id: 1 for wall grains seen in any snapshot so far. Ids are stable and a
+  // grain's kind never changes, so entries are only ever set: a grain removed since still counts
+  // as what it was, and an id never seen (beyond the end) as a flowing grain.
+  std::vector<std::uint8_t> wall_;
 };
 
 extern template class FieldAccumulator<2>;

@@ -1,15 +1,21 @@
 // Fields per bin from synthetic data with known answers (spec §6): contact stress of a lattice
 // with known pair forces straddling bin borders [C.31]-[C.33]; kinetic stress of a Maxwellian
-// = n T I; strain rate of a linear shear field; binned mass and volume sum to the totals.
+// = n T I; strain rate of a linear shear field; binned mass and volume sum to the totals; the
+// contact stress split by contact type (wall) and direction (normal), fabric and contact density.
 #include "analysis/field_accumulator.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 #include <random>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
+
+#include "core/plate_face.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -282,6 +288,189 @@ TYPED_TEST(FieldAccumulatorTyped, BinnedCountAndVolumeSumToTheTotals) {
   }
   EXPECT_NEAR(count, 3000.0, 1e-9);
   EXPECT_NEAR(grain_volume, volume, 1e-8 * volume);
+}
+
+// --- The contact stress split by contact type and direction, fabric, contact density ---------
+
+// The 2D mesh's bin 5 is 0 < y < 6.6, 0 < h < 5 (x from 0.5 to 5.5): V = 33.
+constexpr double kBin5Volume = 6.6 * 5.0;
+
+Particles<2> grains(std::initializer_list<std::pair<GrainId, GrainKind>> list) {
+  Particles<2> p;
+  for (const auto& [id, kind] : list)
+    p.add(id, kind, Vec<2>(10.0 + id, 40.0), Vec<2>::Zero(), 0.5, 1.0);  // outside the mesh
+  return p;
+}
+
+template <class Matrix>
+void expect_tensor(const Table& f, std::size_t bin, const std::string& name, const Matrix& expected,
+                   double tol) {
+  const auto& axes = FieldAccumulator<Matrix::RowsAtCompileTime>::Coordinates::kAxes;
+  for (int a = 0; a < expected.rows(); ++a)
+    for (int b = 0; b < expected.cols(); ++b) {
+      const std::string column = name + "." + std::string(axes[a]) + std::string(axes[b]);
+      EXPECT_NEAR(f.at(bin, column), expected(a, b), tol) << column << " in bin " << bin;
+    }
+}
+
+void expect_same_tensor(const Table& f, std::size_t bin, const std::string& a, const std::string& b,
+                        std::string_view axes) {
+  for (char x : axes)
+    for (char y : axes) {
+      const std::string ab{'.', x, y};
+      EXPECT_EQ(f.at(bin, a + ab), f.at(bin, b + ab)) << a << ab << " in bin " << bin;
+    }
+}
+
+// A transfer between a flowing grain and a target grain is all wall part; one between two
+// flowing grains has none. The wall grain (id 7) is known from the first snapshot and counts as
+// wall even when gone from the later one; id 12, beyond every wall id, is a flowing grain.
+TEST(FieldAccumulator, WallPartIsTheTransfersWithATargetGrain) {
+  FieldAccumulator<2> acc(jet2d_spec());
+  acc.sample(grains({{0, GrainKind::kFree}, {7, GrainKind::kWall}, {12, GrainKind::kFree}}), {},
+             0.0);
+  const Vec<2> impulse(0.5, -0.2);
+  const std::vector<PairImpulse<2>> transfers{
+      {0, 7, {3.0, 2.0}, {2.2, 2.6}, impulse},    // flowing-wall, bin 5
+      {12, 0, {3.0, 8.0}, {2.2, 8.6}, impulse}};  // flowing-flowing, bin 6
+  acc.sample(grains({{0, GrainKind::kFree}, {12, GrainKind::kFree}}), transfers, 0.5);
+  const Table f = acc.fields({});
+  expect_same_tensor(f, 5, "stress_contact_wall", "stress_contact", "xy");
+  // J r^T / (V tau), r = r_i - r_j = (0.8, -0.6).
+  Eigen::Matrix2d expected;
+  expected << 0.5 * 0.8, 0.5 * -0.6, -0.2 * 0.8, -0.2 * -0.6;
+  expect_tensor(f, 5, "stress_contact", expected / (kBin5Volume * 0.5), 1e-15);
+  expect_tensor(f, 6, "stress_contact", expected / (kBin5Volume * 0.5), 1e-15);
+  expect_tensor(f, 6, "stress_contact_wall", Eigen::Matrix2d::Zero(), 0.0);
+}
+
+// The normal part of an impulse is (J.n) n r^T with n along the line of centres; the rest is
+// tangential. J = (1, 0.5), r = (0.45, -0.6), |r| = 0.75, n = (0.6, -0.8): J.n = 0.2.
+TEST(FieldAccumulator, NormalPartIsTheImpulseAlongTheLineOfCentres) {
+  FieldAccumulator<2> acc(jet2d_spec());
+  acc.sample(Particles<2>{}, {}, 0.0);
+  const std::vector<PairImpulse<2>> transfer{{0, 1, {3.0, 2.0}, {2.55, 2.6}, {1.0, 0.5}}};
+  const double tau = 0.5;
+  acc.sample(Particles<2>{}, transfer, tau);
+  const Table f = acc.fields({});
+  const double scale = 1.0 / (kBin5Volume * tau);
+  Eigen::Matrix2d normal, tangential;  // J_n r^T with J_n = (0.12, -0.16); J_t = (0.88, 0.66)
+  normal << 0.12 * 0.45, 0.12 * -0.6, -0.16 * 0.45, -0.16 * -0.6;
+  tangential << 0.88 * 0.45, 0.88 * -0.6, 0.66 * 0.45, 0.66 * -0.6;
+  expect_tensor(f, 5, "stress_contact_normal", normal * scale, 1e-15);
+  for (const char* ab : {"xx", "xy", "yx", "yy"}) {
+    const std::string c(ab);
+    EXPECT_NEAR(f.at(5, "stress_contact." + c) - f.at(5, "stress_contact_normal." + c),
+                tangential(c[0] - 'x', c[1] - 'x') * scale, 1e-15)
+        << c;
+  }
+  // No wall grain: no wall part.
+  expect_tensor(f, 5, "stress_contact_wall", Eigen::Matrix2d::Zero(), 0.0);
+}
+
+// Two contacts of equal weight along x and along y: fabric diag(1/2, 1/2). The contact density
+// counts the segment fractions per sample that covers time (here 2 of 3) and per unit volume;
+// a bond across a border counts by its fractions (0.3 in bin 6, 0.7 in bin 7).
+TEST(FieldAccumulator, FabricAndContactDensity) {
+  FieldAccumulator<2> acc(jet2d_spec());
+  acc.sample(Particles<2>{}, {}, 0.0);
+  const std::vector<PairImpulse<2>> transfers{
+      {0, 1, {2.0, 3.0}, {3.0, 3.0}, {-0.1, 0.0}},    // along x, bin 5
+      {2, 3, {4.0, 2.0}, {4.0, 3.0}, {0.0, -0.3}},    // along y, bin 5
+      {4, 5, {3.0, 12.9}, {3.0, 13.9}, {0.0, 0.2}}};  // along y, across y = 13.2
+  acc.sample(Particles<2>{}, transfers, 0.25);
+  acc.sample(Particles<2>{}, transfers, 0.25);
+  const Table f = acc.fields({});
+  expect_tensor(f, 5, "fabric", Eigen::Matrix2d(Eigen::Vector2d(0.5, 0.5).asDiagonal()), 1e-15);
+  EXPECT_NEAR(f.at(5, "contact_density"), 4.0 / (2 * kBin5Volume), 1e-15);
+  EXPECT_NEAR(f.at(6, "contact_density"), 2 * 0.3 / (2 * kBin5Volume), 1e-14);
+  EXPECT_NEAR(f.at(7, "contact_density"), 2 * 0.7 / (2 * kBin5Volume), 1e-14);
+  expect_tensor(f, 6, "fabric", Eigen::Matrix2d(Eigen::Vector2d(0.0, 1.0).asDiagonal()), 1e-15);
+  // A bin without transfers: no contacts, and no fabric to speak of.
+  EXPECT_EQ(f.at(0, "contact_density"), 0.0);
+  EXPECT_TRUE(std::isnan(f.at(0, "fabric.xx")));
+
+  // Without transfer time (stored frames) nothing of the contacts is known.
+  FieldAccumulator<2> frames(jet2d_spec());
+  frames.sample(Particles<2>{}, {}, 0.0);
+  const Table g = frames.fields({});
+  EXPECT_TRUE(std::isnan(g.at(5, "contact_density")));
+  EXPECT_TRUE(std::isnan(g.at(5, "stress_contact_wall.xy")));
+  EXPECT_TRUE(std::isnan(g.at(5, "stress_contact_normal.xy")));
+}
+
+// The flat plate is partner kPlateId, at the grain's mirror image: a wall contact. With the
+// layers starting at the face (origin 0.5, as in jet2d_spec) half of the segment, the grain's
+// half, lies in the mesh.
+TEST(FieldAccumulator, PlateTransfersAreWallTransfers) {
+  FieldAccumulator<2> acc(jet2d_spec());
+  acc.sample(grains({{0, GrainKind::kFree}}), {}, 0.0);
+  const Vec<2> x(1.0, 2.0), image(0.0, 2.0);  // face at x = 0.5
+  const Vec<2> impulse(0.4, 0.1);             // pushed off the face, with some friction
+  acc.sample(grains({{0, GrainKind::kFree}}),
+             std::vector<PairImpulse<2>>{{0, kPlateId, x, image, impulse}}, 1.0);
+  const Table f = acc.fields({});
+  expect_same_tensor(f, 5, "stress_contact_wall", "stress_contact", "xy");
+  Eigen::Matrix2d expected;  // 0.5 J r^T / V, r = (1, 0)
+  expected << 0.4, 0.0, 0.1, 0.0;
+  expect_tensor(f, 5, "stress_contact_wall", 0.5 * expected / kBin5Volume, 1e-15);
+  expect_tensor(f, 5, "stress_contact_normal",
+                Eigen::Matrix2d(Eigen::Vector2d(0.5 * 0.4 / kBin5Volume, 0.0).asDiagonal()), 1e-15);
+  EXPECT_NEAR(f.at(5, "contact_density"), 0.5 / kBin5Volume, 1e-15);
+}
+
+// 3D: a wall transfer inside ring 2 whose middle lies on the y axis, where e_r = e_y and
+// e_theta = -e_x. r = (0.6, 0, 0.8) = n, J = (0.2, 0.5, 1): in the local frame r = (0, -0.6,
+// 0.8), J = (0.5, -0.2, 1), J.n = 0.92. Every part is rotated as stress_contact is.
+TEST(FieldAccumulator, RingWallNormalAndFabricInTheLocalFrame) {
+  FieldAccumulator<3> acc(jet3d_spec());
+  Particles<3> p;
+  p.add(0, GrainKind::kFree, {0.0, 0.0, 30.0}, Vec<3>::Zero(), 0.5, 1.0);
+  p.add(1, GrainKind::kWall, {0.0, 0.0, 0.0}, Vec<3>::Zero(), 0.5, 1.0);
+  acc.sample(p, {}, 0.0);
+  const std::vector<PairImpulse<3>> transfer{
+      {0, 1, {0.3, 5.0, 2.4}, {-0.3, 5.0, 1.6}, {0.2, 0.5, 1.0}}};
+  acc.sample(p, transfer, 2.0);
+  const Table f = acc.fields({});
+  const double scale = 1.0 / (acc.layout().at(2, "volume") * 2.0);
+  const Eigen::Vector3d r_local(0.0, -0.6, 0.8), j_local(0.5, -0.2, 1.0);
+  expect_tensor(f, 2, "stress_contact", Eigen::Matrix3d(j_local * r_local.transpose() * scale),
+                1e-15);
+  expect_same_tensor(f, 2, "stress_contact_wall", "stress_contact", "rtz");
+  expect_tensor(f, 2, "stress_contact_normal",
+                Eigen::Matrix3d(0.92 * r_local * r_local.transpose() * scale), 1e-15);
+  expect_tensor(f, 2, "fabric", Eigen::Matrix3d(r_local * r_local.transpose()), 1e-15);
+  EXPECT_NEAR(f.at(2, "stress_contact.rz"), 0.4 * scale, 1e-15);
+  EXPECT_NEAR(f.at(2, "stress_contact_normal.rz"), 0.0, 1e-15);  // n has no radial part here
+}
+
+// Central forces (the lattice's J = f r) have no tangential part, in every bin and both frames'
+// geometry; the fabric of any bin with transfers has trace 1; no grain is a wall grain.
+TYPED_TEST(FieldAccumulatorTyped, CentralForcesAreAllNormalAndFabricHasUnitTrace) {
+  constexpr int D = TypeParam::value;
+  const auto& axes = FieldAccumulator<D>::Coordinates::kAxes;
+  const BinSpec spec = spec_for(D);
+  FieldAccumulator<D> acc(spec);
+  acc.sample(Particles<D>{}, {}, 0.0);
+  acc.sample(Particles<D>{}, lattice_bonds<D>(spec), 0.25);
+  const Table f = acc.fields({});
+  for (std::size_t bin = 0; bin < f.rows(); ++bin) {
+    SCOPED_TRACE(bin);
+    ASSERT_GT(f.at(bin, "contact_density"), 0.0);
+    double trace = 0.0;
+    for (int a = 0; a < D; ++a) {
+      const std::string aa = std::string(axes[a]) + std::string(axes[a]);
+      trace += f.at(bin, "fabric." + aa);
+      for (int b = 0; b < D; ++b) {
+        const std::string ab = std::string(axes[a]) + std::string(axes[b]);
+        const double total = f.at(bin, "stress_contact." + ab);
+        EXPECT_NEAR(f.at(bin, "stress_contact_normal." + ab), total,
+                    1e-12 * std::abs(f.at(bin, "P")));
+        EXPECT_EQ(f.at(bin, "stress_contact_wall." + ab), 0.0);
+      }
+    }
+    EXPECT_NEAR(trace, 1.0, 1e-14);
+  }
 }
 
 }  // namespace
