@@ -11,6 +11,7 @@ frames; the one measure taken from frames (FE.1's layer_a_series) is stored in t
 """
 import configparser
 import datetime
+import functools
 import itertools
 import json
 import math
@@ -244,6 +245,20 @@ class Point:
         if self._ensemble is not None:
             self._ensemble.h5.close()
             self._ensemble = None
+
+
+def seed_fields(*names):
+    """A metric for Point.per_seed: the raw [layers][lateral] means of some fields of one run
+    (None when one is absent). The same names give the same function, so the cache holds."""
+    return _seed_fields(tuple(names))
+
+
+@functools.lru_cache(maxsize=None)
+def _seed_fields(names):
+    def metric(analysis):
+        fields = [analysis.field(n, quiet=True) for n in names]
+        return None if any(f is None for f in fields) else [f[0] for f in fields]
+    return metric
 
 
 def evaluate_on_file(path, metric):

@@ -40,6 +40,7 @@ sys.dont_write_bytecode = True  # no __pycache__ in scripts/
 import campaign_data as cd  # noqa: E402
 import plot_analysis as pa  # noqa: E402
 from campaign_data import NOT_MEASURED, Measured  # noqa: E402
+from report_causes import section_causes  # noqa: E402
 from report_document import Figures, Section, Table, format_measured, format_number, \
     read_text, verdict_line  # noqa: E402
 
@@ -51,6 +52,9 @@ STUDY_CONTACT_TIME = {0.0: 0.1, 0.2: 0.1, 0.4: 0.05, 1.0: 0.01}
 SPEC_T4_1 = {(0.75, 0.1): (4.98e2, 2.88), (0.8, 0.1): (4.96e2, 2.23), (0.9, 0.1): (4.94e2, 1.05),
              (0.99, 0.1): (4.93e2, 0.101), (0.75, 0.05): (1.99e3, 5.75)}
 NOT_IN_SPEC = "the study's value is not in the spec"
+# Sections that study the open choices and causes rather than one of the study's results: not in
+# the closing list of verdicts.
+ANALYSES = ("Sensitivity", "Causes")
 COLOURS = ("C0", "C1", "C2", "C3", "C4", "C5")
 
 
@@ -233,19 +237,6 @@ def fit_over_seeds(point, law, name):
     error bar."""
     value = ensemble_fit(point, law).get(name, NOT_MEASURED).value
     return Measured(value, point.over_seeds(fit_parameter(law, name)).error)
-
-
-def seed_fields(*names):
-    """A metric: the raw [layers][lateral] means of some fields of one run."""
-    return _seed_fields(tuple(names))
-
-
-@functools.lru_cache(maxsize=None)
-def _seed_fields(names):
-    def metric(analysis):
-        fields = [analysis.field(n, quiet=True) for n in names]
-        return None if any(f is None for f in fields) else [f[0] for f in fields]
-    return metric
 
 
 def friction_name(point):
@@ -804,7 +795,7 @@ def pooled_means(points, x_name, y_name):
 
 def pooled_per_seed(points, x_name, y_name):
     """[(x, y)] per seed number: the two fields of that seed's run at every point, flattened."""
-    metric = seed_fields(x_name, y_name)
+    metric = cd.seed_fields(x_name, y_name)
     by_seed = {}
     for p in points:
         for seed, value in p.per_seed(metric).items():
@@ -1383,7 +1374,7 @@ def section_sensitivity(ctx):
 SECTIONS = [section_t4_1, section_f4_2, section_f4_3, section_f5_3, section_f5_4, section_f5_5,
             section_f5_6, section_t5_1, section_f5_7, section_t5_2, section_f5_9, section_f6_3,
             section_f6_4, section_f6_5, section_f6_7, section_f6_11, section_f6_16, section_fe1,
-            section_hc, section_sensitivity]
+            section_hc, section_sensitivity, section_causes]
 
 
 class Context:
@@ -1398,6 +1389,9 @@ class Context:
 
     def groups_for(self, result_id):
         return self.campaign.file.groups_for(result_id)
+
+    def describe(self, section, groups):
+        return describe_groups(section, self.campaign, groups)
 
 
 def commits(campaign):
@@ -1458,7 +1452,7 @@ def write_report(campaign, docs_dir, text_dir):
     sections = [build(context) for build in SECTIONS]
     intro, _ = read_text(text_dir, "intro")
     verdicts = "\n".join(f"- **{s.id}**: {verdict_line(s.after)}" for s in sections
-                         if s.id != "Sensitivity")
+                         if s.id not in ANALYSES)
     document = "\n\n".join(["# Reproduction of the study", intro, "## The campaign", top,
                             *(s.markdown() for s in sections), "## Verdicts", verdicts]) + "\n"
     with open(os.path.join(docs_dir, "reproduction.md"), "w", encoding="utf-8") as f:

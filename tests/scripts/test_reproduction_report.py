@@ -126,7 +126,7 @@ def test_figures_are_small_pngs_and_all_linked(tmp):
 
 def test_results_json_holds_the_numbers_by_id(tmp):
     _, _, results = default_report()
-    assert set(results) == set(RESULT_IDS) | {"meta", "Sensitivity"}, sorted(results)
+    assert set(results) == set(RESULT_IDS) | {"meta", "Sensitivity", "Causes"}, sorted(results)
     assert results["meta"]["campaign"] == "smoke" and not results["meta"]["quick"]
     ratio = results["F5.3"]["ratio_rz_zz_r0.1"]["frictional"]  # smoke's 3D jet: mu_p = 0.2
     assert len(ratio) == 2 and math.isfinite(ratio[0]) and ratio[1] >= 0, ratio
@@ -192,6 +192,49 @@ def test_sensitivity_groups_are_listed_before_they_run(tmp):
     assert "a (mu\\* = a I)" in text, text
     rows = results["Sensitivity"]["tables"]["sens_wall"]
     assert [r["group/point"] for r in rows] == ["sens_wall/kind-fixed", "sens_wall/kind-tethered"]
+
+
+def test_causes_resolve_the_layers_and_split_the_contact_stress(tmp):
+    """A smoke campaign with `causes` groups: the smoke jets cut into sublayers of 1 d."""
+    campaign_file = os.path.join(tmp, "smoke_causes.ini")
+    with open(os.path.join(ROOT, "campaigns", "smoke.ini"), encoding="utf-8") as f:
+        smoke = f.read().replace("../scenes/", os.path.join(ROOT, "scenes") + "/")
+    sublayers = "analysis.layers = 3\nanalysis.layer_height = 1\nseeds = 1..2\n"
+    groups = []
+    for name, source in (("causes3d", "[jet3d]"), ("causes2d", "[jet2d]")):
+        body = smoke.split(source, 1)[1].split("\n[", 1)[0]
+        body = body.replace("results = F5.3", "").replace("results = F6.3, F6.4", "")
+        if name == "causes3d":  # both frictions: frictionless contacts carry no tangential force
+            body += "\ncontact.friction = 0, 0.2\n"
+        else:
+            body = body.replace("contact.friction = 0, 0.2", "contact.friction = 0")
+        groups.append(f"\n[{name}]\nresults = causes\n{body.strip()}\n{sublayers}")
+    with open(campaign_file, "w", encoding="utf-8") as f:
+        f.write(smoke + "".join(groups))
+    campaign = os.path.join(tmp, "campaign")
+    shutil.copytree(SmokeCampaign.path(), campaign)
+    result = subprocess.run([GRANJET, "campaign", campaign_file, "--out", campaign, "--quiet"],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    markdown, results = report(os.path.join(tmp, "docs"), "--campaign", campaign_file,
+                               campaign_dir=campaign)
+    text = section(markdown, "Causes")
+    assert "causes_3d_shear_sublayers.png" in text and "causes_2d_slow_region.png" in text, text
+    tables = results["Causes"]["tables"]
+    frictionless = tables["causes3d/friction-0"]
+    assert [row["h (d)"] for row in frictionless] == [0.5, 1.5, 2.5], frictionless
+    for row in frictionless:
+        value, error = row["tangential (all contacts)"]
+        assert abs(value) < 1e-12 and abs(error) < 1e-12, row
+    frictional = tables["causes3d/friction-0.2"]
+    assert any(abs(row["tangential (all contacts)"][0]) > 1e-6 for row in frictional), frictional
+    for row in frictionless + frictional:  # only the lowest sublayer holds target contacts
+        if row["h (d)"] > 1:
+            assert row["contact with target"][0] == 0.0, row
+    assert {r["group"] for r in results["Causes"]["targets_3d"]} == {"causes3d"}
+    contacts = [row["contacts per grain"][0] for row in tables["causes2d/causes2d"]]
+    assert len(contacts) == 3 and all(c is None or c >= 0 for c in contacts), contacts
+    assert "- **Causes**" not in markdown, "the closing list holds the study's ids only"
 
 
 def test_a_missing_campaign_directory_is_refused(tmp):
