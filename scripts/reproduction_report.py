@@ -1351,6 +1351,11 @@ def metric_table(name, rows, metrics, caption=""):
     return table
 
 
+# The groups the sens_* groups depart from (the study's target), under both height origins.
+REFERENCE_3D = ("rheology3d", "rheology3d_surface")
+REFERENCE_2D = ("jet2d", "jet2d_surface")
+
+
 def section_sensitivity(ctx):
     s = ctx.section("Sensitivity", "how the contested numbers move with the open choices")
     groups = [g for g in ctx.campaign.file.groups if g.name.startswith("sens_")]
@@ -1359,6 +1364,14 @@ def section_sensitivity(ctx):
         s.results["status"] = "not yet run"
         return s
     describe_groups(s, ctx.campaign, groups)
+    for dimension, reference in ((3, REFERENCE_3D), (2, REFERENCE_2D)):
+        rows = [(f"{name}: {', '.join(f'{k}={v}' for k, v in sorted(p.params.items()))}"
+                 .rstrip(": "), p)
+                for name in reference for p in ctx.campaign.points(name)
+                if math.isclose(p.number("jet.phi_tilde"), 0.9)]
+        s.add_table(metric_table(f"reference_{dimension}d", rows, metrics_for(dimension),
+                                 f"The references ({dimension}D) each sens_* table moves away "
+                                 "from, under both height origins: value ± std over seeds."))
     for g in groups:
         points = ctx.campaign.points(g.name)
         metrics = metrics_for(g.dimension())
