@@ -260,25 +260,18 @@ def tar_contents(path, names):
 
 
 def write_tar(path, contents):
-    """A reproducible tar.xz of {name: bytes}: sorted, mtime 0, owner 0, mode 644; written to a
-    temporary file and renamed."""
-    directory = os.path.dirname(path)
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix="." + os.path.basename(path) + ".")
-    os.close(fd)
-    try:
-        with tarfile.open(tmp, "w:xz", format=tarfile.GNU_FORMAT, preset=XZ_PRESET) as tar:
-            for name in sorted(contents):
-                info = tarfile.TarInfo(name)
-                info.size, info.mtime, info.mode = len(contents[name]), 0, 0o644
-                info.uid = info.gid = 0
-                info.uname = info.gname = ""
-                tar.addfile(info, io.BytesIO(contents[name]))
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
+    """A reproducible tar.xz of {name: bytes}: sorted, mtime 0, owner 0, mode 644; built in
+    memory (a group's tar is small) and written atomically."""
+    buffer = io.BytesIO()
+    with tarfile.open(fileobj=buffer, mode="w:xz", format=tarfile.GNU_FORMAT,
+                      preset=XZ_PRESET) as tar:
+        for name in sorted(contents):
+            info = tarfile.TarInfo(name)
+            info.size, info.mtime, info.mode = len(contents[name]), 0, 0o644
+            info.uid = info.gid = 0
+            info.uname = info.gname = ""
+            tar.addfile(info, io.BytesIO(contents[name]))
+    write_atomically(path, buffer.getvalue())
 
 
 def has_particles(path):

@@ -7,7 +7,6 @@ granjet binary (a second or so), packed, unpacked elsewhere, continued and repor
 PATH defaults to build/app/granjet (CMake passes the built target). Prints "N passed,
 M failed" last; exit code 0 only when all pass.
 """
-import argparse
 import io
 import json
 import os
@@ -343,17 +342,10 @@ def test_bad_input_exits_2(tmp):
     assert not os.path.exists(os.path.join(tmp, "c"))
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--granjet", default=os.path.join(ROOT, "build", "app", "granjet"))
-    global GRANJET
-    GRANJET = parser.parse_args().granjet
-    try:
-        return script_tests.run(globals())
-    finally:
-        if Shared.base:
-            shutil.rmtree(Shared.base, ignore_errors=True)
+def cleanup():
+    if Shared.base:
+        shutil.rmtree(Shared.base, ignore_errors=True)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(script_tests.main_with_granjet(globals(), ROOT, cleanup))

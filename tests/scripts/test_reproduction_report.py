@@ -7,7 +7,6 @@ granjet binary (a few seconds), and the report written from it into temporary di
 PATH defaults to build/app/granjet (CMake passes the built target). Prints "N passed,
 M failed" last; exit code 0 only when all pass.
 """
-import argparse
 import json
 import math
 import os
@@ -271,17 +270,10 @@ def test_formulas_match_the_spec(tmp):
     assert abs(a - 2) < 1e-12 and abs(b - 0.5) < 1e-12 and abs(slope - 1) < 1e-12
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--granjet", default=os.path.join(ROOT, "build", "app", "granjet"))
-    global GRANJET
-    GRANJET = parser.parse_args().granjet
-    try:
-        return script_tests.run(globals())
-    finally:
-        if SmokeCampaign.directory:
-            shutil.rmtree(SmokeCampaign.directory, ignore_errors=True)
+def cleanup():
+    if SmokeCampaign.directory:
+        shutil.rmtree(SmokeCampaign.directory, ignore_errors=True)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(script_tests.main_with_granjet(globals(), ROOT, cleanup))
