@@ -1412,6 +1412,13 @@ REFERENCE_3D = ("rheology3d", "rheology3d_surface")
 REFERENCE_2D = ("jet2d", "jet2d_surface")
 
 
+def case_label(point):
+    """The point's physics overrides, 'key=value, ...' (output.* keys left out: they change
+    what is stored, not what is simulated)."""
+    return ", ".join(f"{k}={v}" for k, v in sorted(point.params.items())
+                     if not k.startswith("output."))
+
+
 def section_sensitivity(ctx):
     s = ctx.section("Sensitivity", "how the contested numbers move with the open choices")
     groups = [g for g in ctx.campaign.file.groups if g.name.startswith("sens_")]
@@ -1421,8 +1428,7 @@ def section_sensitivity(ctx):
         return s
     describe_groups(s, ctx.campaign, groups)
     for dimension, reference in ((3, REFERENCE_3D), (2, REFERENCE_2D)):
-        rows = [(f"{name}: {', '.join(f'{k}={v}' for k, v in sorted(p.params.items()))}"
-                 .rstrip(": "), p)
+        rows = [(f"{name}: {case_label(p)}".rstrip(": "), p)
                 for name in reference for p in ctx.campaign.points(name)
                 if math.isclose(p.number("jet.phi_tilde"), 0.9)]
         s.add_table(metric_table(f"reference_{dimension}d", rows, metrics_for(dimension),
@@ -1431,7 +1437,7 @@ def section_sensitivity(ctx):
     for g in groups:
         points = ctx.campaign.points(g.name)
         metrics = metrics_for(g.dimension())
-        rows = [(", ".join(f"{k}={v}" for k, v in sorted(p.params.items())) or p.label, p)
+        rows = [(case_label(p) or p.label, p)
                 for p in points]
         s.add_table(metric_table(g.name, rows, metrics,
                                  f"[{g.name}] ({g.dimension()}D): value ± std over seeds; "
