@@ -42,6 +42,8 @@ STATE_3D = {
     "T_g": (("T_g",), lambda s: s[0]),
     "v_r": (("v.r",), lambda s: s[0]),
     "D_rz": (("D",), lambda s: s[0]),
+    "mu*": (("mu_star",), lambda s: s[0]),
+    "I": (("I",), lambda s: s[0]),
     "contact density": (("contact_density",), lambda s: s[0]),
     "fabric rz": (("fabric.rz",), lambda s: s[0]),
 }
@@ -93,8 +95,18 @@ def causes_points(ctx, prefix):
 
 
 # ---- 3D: the inner ring's shear stress, sublayer by sublayer ---------------------------------
+def kinetic_theory_ratio(point):
+    """P/(n T_g) over [5.2]+[5.3] at the sublayer's phi, with e or, for frictional grains,
+    e-bar [2.55] (as the F5.5 section)."""
+    e, mu_p = point.number("contact.restitution"), point.number("contact.friction")
+    e_kt = pa.effective_restitution_2_55(e, mu_p) if mu_p > 0 else e
+    return over_seeds(point, ("P_over_nT", "phi"),
+                      lambda s: s[0] / pa.pressure_ratio_5_2(s[1], e_kt))
+
+
 def shear_table(point):
     parts = {name: over_seeds(point, *spec) for name, spec in {**SHEAR_PARTS, **STATE_3D}.items()}
+    parts["P/(n T_g) over [5.2]"] = kinetic_theory_ratio(point)
     table = Table(f"{point.name}", ["h (d)", *parts],
                   f"[{point.group.name}] {friction_label(point)}, inner ring r/R_tar = 0.1, "
                   "sublayers of 1 d (heights from the analysis origin); mean ± std over seeds.")
