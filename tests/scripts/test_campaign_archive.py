@@ -26,6 +26,7 @@ ARCHIVE = os.path.join(SCRIPTS, "campaign_archive.py")
 REPORT = os.path.join(SCRIPTS, "reproduction_report.py")
 SMOKE = os.path.join(ROOT, "campaigns", "smoke.ini")
 sys.dont_write_bytecode = True  # no __pycache__ in scripts/
+GRANJET = None  # the binary under test: script_tests.main_with_granjet sets it from --granjet
 sys.path.insert(0, SCRIPTS)
 import campaign_data  # noqa: E402
 import script_tests  # noqa: E402

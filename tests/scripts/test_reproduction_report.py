@@ -21,6 +21,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SCRIPT = os.path.join(ROOT, "scripts", "reproduction_report.py")
 TEXTS = os.path.join(ROOT, "docs", "reproduction", "text")
 sys.dont_write_bytecode = True  # no __pycache__ in scripts/
+GRANJET = None  # the binary under test: script_tests.main_with_granjet sets it from --granjet
 sys.path.insert(0, os.path.dirname(SCRIPT))
 import campaign_data  # noqa: E402
 import reproduction_report  # noqa: E402
