@@ -6,8 +6,11 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
@@ -59,6 +62,8 @@ struct Range {
 };
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// More threads than any machine we know of has cores: a typo, not a wish.
+constexpr std::int64_t kMaxThreads = 256;
 const Range kPositive{0.0, true, kInf, false};
 const Range kNonNegative{0.0, false, kInf, false};
 
@@ -76,16 +81,25 @@ Key real_key(std::string name, std::string meaning, Member member, Range range) 
           [member](const Scene& s) { return format_number(member(s)); }};
 }
 
+// An integer key, range-checked in 64 bits before it is narrowed to its member's type: at least
+// `lo`, at most `hi` and what the member holds.
 template <class Member>
-Key integer_key(std::string name, std::string meaning, Member member, std::int64_t lo) {
-  const std::string help = meaning + "; allowed integer >= " + std::to_string(lo);
-  return {name, help,
-          [name, member, lo](Scene& s, const std::string& text) {
+Key integer_key(std::string name, std::string meaning, Member member, std::int64_t lo,
+                std::int64_t hi = std::numeric_limits<std::int64_t>::max()) {
+  using Stored = std::remove_cvref_t<decltype(member(std::declval<Scene&>()))>;
+  constexpr auto stored_max = std::numeric_limits<Stored>::max();
+  if (std::in_range<std::int64_t>(stored_max)) hi = std::min(hi, static_cast<std::int64_t>(stored_max));
+  const std::string allowed =
+      "an integer " + (hi == std::numeric_limits<std::int64_t>::max()
+                           ? ">= " + std::to_string(lo)
+                           : "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return {name, meaning + "; allowed " + allowed,
+          [name, member, lo, hi, allowed](Scene& s, const std::string& text) {
             std::int64_t v = 0;
             const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-            if (ec != std::errc() || end != text.data() + text.size() || v < lo)
-              throw InputError(name, "'" + text + "' is not an integer >= " + std::to_string(lo));
-            member(s) = static_cast<std::remove_cvref_t<decltype(member(s))>>(v);
+            if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi)
+              throw InputError(name, "'" + text + "' is not " + allowed);
+            member(s) = static_cast<Stored>(v);
           },
           [member](const Scene& s) { return std::to_string(member(s)); }};
 }
@@ -159,7 +173,7 @@ const std::vector<Key>& keys() {
                          FIELD(run.progress_interval), kPositive));
     k.push_back(integer_key("run.threads",
                             "OpenMP threads of the soft DEM (results are bit-identical for any)",
-                            FIELD(run.threads), 1));
+                            FIELD(run.threads), 1, kMaxThreads));
     k.push_back(real_key("jet.diameter", "D_jet (3D) or strip width 2 R_jet (2D), in d",
                          FIELD(jet.diameter), kPositive));
     k.push_back(real_key("jet.phi_tilde", "fraction of lattice sites kept, phi~0",
@@ -342,32 +356,84 @@ void validate_wall(const Scene& s) {
 
 }  // namespace
 
-Scene parse_scene(std::istream& in, const std::string& source,
-                  const std::vector<std::string>& overrides) {
+namespace {
+
+// The 1-based lines of INI `text` that assign `key` (section.key), for messages.
+std::vector<int> assignment_lines(const std::string& text, const std::string& key) {
+  const auto trim = [](std::string v) {
+    const auto first = v.find_first_not_of(" \t\r"), last = v.find_last_not_of(" \t\r");
+    return first == std::string::npos ? std::string() : v.substr(first, last - first + 1);
+  };
+  std::vector<int> lines;
+  std::istringstream in(text);
+  std::string section, line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    line = trim(line);
+    if (line.starts_with('[') && line.ends_with(']')) {
+      section = trim(line.substr(1, line.size() - 2));
+    } else if (const auto eq = line.find('='); !line.starts_with('#') && eq != std::string::npos) {
+      const std::string name = trim(line.substr(0, eq));
+      if ((section.empty() ? name : section + "." + name) == key) lines.push_back(number);
+    }
+  }
+  return lines;
+}
+
+// `require_kind`: a scene file must say what it builds; an empty or all-comment file (or a
+// stray INI) would otherwise silently run the default jet.
+Scene parse_scene_text(const std::string& text, const std::string& source,
+                       const std::vector<std::string>& overrides, bool require_kind) {
   po::options_description desc;
   for (const Key& k : keys()) desc.add_options()(k.name.c_str(), po::value<std::string>());
   po::parsed_options parsed(&desc);
   try {
+    std::istringstream in(text);
     parsed = po::parse_config_file(in, desc, /*allow_unregistered=*/true);
   } catch (const po::error& e) {
     throw InputError(source, e.what());
   }
   Scene scene;
+  std::set<std::string> given;
   for (const po::option& o : parsed.options) {
     if (o.unregistered)
       throw InputError(o.string_key, "unknown key in " + source +
                                          "; see 'granjet --help' for the scene keys");
+    if (!given.insert(o.string_key).second) {
+      std::string where;
+      for (const int line : assignment_lines(text, o.string_key))
+        where += (where.empty() ? "lines " : " and ") + std::to_string(line);
+      throw InputError(o.string_key, "given twice in " + source + " (" + where +
+                                         "); keep the one you mean");
+    }
     find_key(o.string_key).set(scene, o.value.front());
   }
+  if (require_kind && !given.contains("scene.kind"))
+    throw InputError(source, "names no scene.kind: a scene file says what it builds "
+                             "([scene] kind = jet | binary | gas | hcs)");
   for (const std::string& assignment : overrides) apply_override(scene, assignment);
   validate_scene(scene);
   return scene;
 }
 
+}  // namespace
+
+Scene parse_scene(std::istream& in, const std::string& source,
+                  const std::vector<std::string>& overrides) {
+  const std::string text{std::istreambuf_iterator<char>(in), {}};
+  return parse_scene_text(text, source, overrides, /*require_kind=*/false);
+}
+
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw InputError(file.string(), "no such scene file");
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError(file.string(), "is not a regular file; a scene is an INI file");
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), "cannot open the scene file");
-  return parse_scene(in, file.string(), overrides);
+  const std::string text{std::istreambuf_iterator<char>(in), {}};
+  if (in.bad()) throw InputError(file.string(), "cannot read the scene file");
+  return parse_scene_text(text, file.string(), overrides, /*require_kind=*/true);
 }
 
 void validate_scene(const Scene& s) {

@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -128,6 +132,13 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   // The rectangle is a 3D cross section (spec §5); the 2D jet is a strip.
   expect_refused({"scene.dimension=2", "jet.shape=rectangle"}, "jet.shape", "3D");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
+  // Integers are range-checked before they are narrowed: 2^32 + 2 no longer wraps to 2.
+  expect_refused({"run.threads=4294967296"}, "run.threads", "in [1, 256]");
+  expect_refused({"run.threads=4294967298"}, "run.threads", "in [1, 256]");
+  expect_refused({"run.threads=257"}, "run.threads", "in [1, 256]");
+  expect_refused({"analysis.lateral_bins=4294967297"}, "analysis.lateral_bins",
+                 "in [1, 2147483647]");
+  expect_refused({"gas.grains=9223372036854775808"}, "gas.grains", "integer >= 2");
   // Target lattices (spec §4 leaves them open): no overlapping or ambiguous tether neighbours.
   expect_refused({"contact.clamp_normal=yes"}, "contact.clamp_normal", "false | true");
   expect_refused({"wall.lattice=random"}, "wall.lattice", "hexagonal | square");
@@ -156,6 +167,43 @@ TEST(SceneFile, UnknownKeyInFileAndMissingFileAreRefused) {
       },
       InputError);
   EXPECT_THROW(load_scene("/nonexistent/scene.ini", {}), InputError);
+}
+
+// The last of two assignments no longer silently wins: both lines are named.
+TEST(SceneFile, DuplicateKeyIsRefusedNamingBothLines) {
+  std::istringstream in("[scene]\nkind = jet\n[contact]\nrestitution = 0.8\n# e\n"
+                        "restitution = 0.9\n");
+  try {
+    parse_scene(in, "twice.ini", {});
+    ADD_FAILURE() << "a duplicate key was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "contact.restitution");
+    EXPECT_NE(std::string(e.what()).find("lines 4 and 6"), std::string::npos) << e.what();
+  }
+}
+
+// A directory, an empty file or one with only comments used to run the default jet3d.
+TEST(SceneFile, SceneMustBeARegularFileThatNamesItsKind) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("granjet_scene_kind_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "empty.ini").close();
+  std::ofstream(dir / "comments.ini") << "# a scene to be\n[contact]\n# restitution = 0.8\n";
+  std::ofstream(dir / "kinded.ini") << "[scene]\nkind = binary\n";
+  const auto refused = [](const std::filesystem::path& file, const std::string& why) {
+    try {
+      load_scene(file, {});
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), file.string());
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  refused(dir, "not a regular file");
+  refused(dir / "empty.ini", "names no scene.kind");
+  refused(dir / "comments.ini", "names no scene.kind");
+  EXPECT_EQ(load_scene(dir / "kinded.ini", {}).kind, SceneKind::kBinary);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
