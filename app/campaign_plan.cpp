@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/backend_factory.hpp"
+#include "app/run_budget.hpp"
 #include "app/scene_file.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
@@ -174,6 +175,7 @@ void plan_group(const CampaignFile& campaign, std::size_t index, const PlanOptio
       try {
         run.scene = load_scene(g.scene, run.overrides);
         check_backend(run.backend, run.scene);
+        check_run_budget(run.scene, run.backend, physical_memory_bytes());
       } catch (const InputError& e) {
         rethrow_in_group(e, g);
       }

@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "app/backend_factory.hpp"
+#include "app/run_budget.hpp"
 #include "app/run_command.hpp"
 #include "app/scene_file.hpp"
 
@@ -46,7 +47,10 @@ std::string cell(const nlohmann::json* value) {
 int compare_command(const CompareOptions& options, std::ostream& out) {
   const Scene scene = load_scene(options.scene_file, options.overrides);
   const std::vector<std::string> backends = backend_names();
-  for (const std::string& backend : backends) check_backend(backend, scene);
+  for (const std::string& backend : backends) {
+    check_backend(backend, scene);
+    check_run_budget(scene, backend, physical_memory_bytes());
+  }
   std::filesystem::create_directories(options.out_dir);
 
   int code = 0;

@@ -64,6 +64,8 @@ struct Range {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // More threads than any machine we know of has cores: a typo, not a wish.
 constexpr std::int64_t kMaxThreads = 256;
+// Grain indices are 32-bit; memory (app/run_budget) refuses far fewer on most machines.
+constexpr std::int64_t kMaxGrains = 1'000'000'000;
 const Range kPositive{0.0, true, kInf, false};
 const Range kNonNegative{0.0, false, kInf, false};
 
@@ -165,7 +167,9 @@ const std::vector<Key>& keys() {
         "run.integrator", "time integrator", FIELD(run.integrator),
         {{"ab2", IntegratorKind::kAdamsBashforth2}, {"verlet", IntegratorKind::kVelocityVerlet}}));
     k.push_back(integer_key("run.seed", "random seed of the site removal", FIELD(run.seed), 0));
-    k.push_back(real_key("run.skin", "neighbour-list skin in d", FIELD(run.skin), kPositive));
+    // A skin of several d lists (1 + skin)^D times the contacts: memory and time for nothing.
+    k.push_back(real_key("run.skin", "neighbour-list skin in d", FIELD(run.skin),
+                         {0.0, true, 5.0, false}));
     k.push_back(real_key("run.max_overlap",
                          "blow-up when an overlap exceeds this fraction of the smaller radius",
                          FIELD(run.max_overlap), {0.0, true, 1.0, false}));
@@ -178,7 +182,7 @@ const std::vector<Key>& keys() {
                          FIELD(jet.diameter), kPositive));
     k.push_back(real_key("jet.phi_tilde", "fraction of lattice sites kept, phi~0",
                          FIELD(jet.phi_tilde), {0.0, true, 1.0, false}));
-    k.push_back(integer_key("jet.grains", "number of jet grains", FIELD(jet.grains), 1));
+    k.push_back(integer_key("jet.grains", "number of jet grains", FIELD(jet.grains), 1, kMaxGrains));
     k.push_back(real_key("jet.spacing", "lattice nearest-neighbour distance in d",
                          FIELD(jet.spacing), {1.0, false, kInf, false}));
     k.push_back(choice_key<Dispersity>("jet.dispersity", "grain sizes", FIELD(jet.dispersity),
@@ -240,7 +244,7 @@ const std::vector<Key>& keys() {
     k.push_back(real_key("gas.phi", "packing fraction of the periodic gas",
                          FIELD(gas.phi), {0.0, true, 1.0, true}));
     k.push_back(integer_key("gas.grains", "number of gas grains (d = m = 1)", FIELD(gas.grains),
-                            2));
+                            2, kMaxGrains));
     k.push_back(real_key("gas.temperature", "initial granular temperature T = sum m v^2 / (D N)",
                          FIELD(gas.temperature), kPositive));
     k.push_back(real_key("gas.equilibration", "sim time before the measurements start",
@@ -260,6 +264,10 @@ const std::vector<Key>& keys() {
                          FIELD(ed.tc), kNonNegative));
     k.push_back(real_key("output.interval", "sim time between stored frames (0: first and last)",
                          FIELD(output.interval), kNonNegative));
+    k.push_back(real_key("output.max_bytes",
+                         "refuse a run whose frames would need more bytes than this (raise it "
+                         "for long, dense outputs)",
+                         FIELD(output.max_bytes), kPositive));
     k.push_back(choice_key<bool>("analysis.enabled", "measure the fields of spec §6 during jet runs",
                                  FIELD(analysis.enabled), {{"true", true}, {"false", false}}));
     k.push_back(real_key("analysis.window_start", "start of the time average",

@@ -7,7 +7,11 @@
 
 namespace granjet {
 
-// "1..10" (inclusive, at most 10,001 seeds) or "3,7,9". Throws InputError naming `key`.
+// Ensembles are tens of seeds; ten thousand is a typo's worth.
+inline constexpr std::uint64_t kMaxSeeds = 10000;
+
+// "1..10" (inclusive) or "3,7,9", at most kMaxSeeds distinct seeds. Throws InputError naming
+// `key`.
 std::vector<std::uint64_t> parse_seeds(const std::string& text, const std::string& key);
 
 }  // namespace granjet

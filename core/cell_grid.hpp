@@ -43,12 +43,16 @@ class CellGrid {
 
   // Tiles the periodic box [0, box) (positions wrapped into it) with cells of at least
   // `min_edge`; neighbour cells wrap around. Three cells per axis at least, so that a cell's
-  // neighbours are distinct cells and each pair of cells is visited once.
+  // neighbours are distinct cells and each pair of cells is visited once. A dilute box gets
+  // larger cells rather than a huge empty grid, as in build().
   void build_periodic(std::span<const Vec<D>> positions, const Vec<D>& box, double min_edge) {
     periodic_ = true;
     lo_.setZero();
+    double edge = min_edge;
+    const double max_cells = kMaxCellsPerGrain * std::max<std::size_t>(positions.size(), 1);
+    while (cell_count(box, edge) > max_cells) edge *= 1.25;
     for (int d = 0; d < D; ++d) {
-      dims_[d] = static_cast<int>(box[d] / min_edge);
+      dims_[d] = static_cast<int>(box[d] / edge);
       if (dims_[d] < 3)
         throw std::invalid_argument("periodic box narrower than three neighbour cells");
       inv_edge_[d] = dims_[d] / box[d];

@@ -143,6 +143,8 @@ struct AnalysisSpec {
 
 struct OutputSpec {
   double interval = 1.0;  // sim time between stored frames; 0 = initial and final only
+  // A run whose frames would take more is refused before it starts (app/run_budget).
+  double max_bytes = 8e9;
 };
 
 struct Scene {

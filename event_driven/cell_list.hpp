@@ -44,14 +44,18 @@ class CellList {
     std::size_t size = 0;
   };
 
-  // Tiles [0, box) with at least 3 cells per axis.
+  // Tiles [0, box) with at least 3 cells per axis; a dilute box gets larger cells rather than a
+  // huge empty grid, as open() does.
   static CellList periodic(const Vec<D>& box, double diameter, std::size_t grains) {
     CellList cells(grains);
     cells.periodic_ = true;
     cells.lo_ = Vec<D>::Zero();
     cells.box_ = box;
+    double edge = diameter;
+    const double max_cells = kMaxCellsPerGrain * static_cast<double>(grains) + 4096.0;
+    while (cell_count(box, edge) > max_cells) edge *= 1.25;
     for (int a = 0; a < D; ++a) {
-      cells.n_[a] = static_cast<int>(std::floor(box[a] / diameter));
+      cells.n_[a] = static_cast<int>(std::floor(box[a] / edge));
       if (cells.n_[a] < 3)
         throw std::invalid_argument("periodic box narrower than three grain diameters");
       cells.edge_[a] = box[a] / cells.n_[a];

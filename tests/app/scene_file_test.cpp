@@ -131,14 +131,16 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"jet.area=0"}, "jet.area", "> 0");
   // The rectangle is a 3D cross section (spec §5); the 2D jet is a strip.
   expect_refused({"scene.dimension=2", "jet.shape=rectangle"}, "jet.shape", "3D");
-  expect_refused({"jet.grains=2.5"}, "jet.grains", "integer >= 1");
+  expect_refused({"jet.grains=2.5"}, "jet.grains", "integer in [1, 1000000000]");
   // Integers are range-checked before they are narrowed: 2^32 + 2 no longer wraps to 2.
   expect_refused({"run.threads=4294967296"}, "run.threads", "in [1, 256]");
   expect_refused({"run.threads=4294967298"}, "run.threads", "in [1, 256]");
   expect_refused({"run.threads=257"}, "run.threads", "in [1, 256]");
   expect_refused({"analysis.lateral_bins=4294967297"}, "analysis.lateral_bins",
                  "in [1, 2147483647]");
-  expect_refused({"gas.grains=9223372036854775808"}, "gas.grains", "integer >= 2");
+  expect_refused({"gas.grains=9223372036854775808"}, "gas.grains", "in [2, 1000000000]");
+  expect_refused({"gas.grains=9223372036854775807"}, "gas.grains", "in [2, 1000000000]");
+  expect_refused({"run.skin=1e12"}, "run.skin", "(0, 5]");
   // Target lattices (spec §4 leaves them open): no overlapping or ambiguous tether neighbours.
   expect_refused({"contact.clamp_normal=yes"}, "contact.clamp_normal", "false | true");
   expect_refused({"wall.lattice=random"}, "wall.lattice", "hexagonal | square");
