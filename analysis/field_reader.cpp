@@ -75,8 +75,7 @@ std::size_t rows_of(hid_t file, const std::string& dataset, const H5Context& ctx
 std::vector<double> read_analysis_values(const std::filesystem::path& file,
                                          const std::string& dataset) {
   const H5Context ctx(file);
-  const H5Handle f =
-      ctx.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open", "the file");
+  const H5Handle f = ctx.open_read_only();
   return read_doubles(f.get(), dataset, ctx);
 }
 
@@ -85,17 +84,20 @@ bool has_analysis(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file, ec)) return false;
   const H5Context ctx(file);
   if (H5Fis_hdf5(file.c_str()) <= 0) return false;
-  const H5Handle f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  return f.get() >= 0 && H5Lexists(f.get(), "/fields", H5P_DEFAULT) > 0 &&
-         H5Lexists(f.get(), "/analysis", H5P_DEFAULT) > 0;
+  try {
+    const H5Handle f = ctx.open_read_only();
+    return H5Lexists(f.get(), "/fields", H5P_DEFAULT) > 0 &&
+           H5Lexists(f.get(), "/analysis", H5P_DEFAULT) > 0;
+  } catch (const std::runtime_error&) {
+    return false;
+  }
 }
 
 RunResult read_run_result(const std::filesystem::path& file) {
   if (!has_analysis(file))
     throw std::runtime_error("'" + file.string() + "' holds no stored analysis (/fields)");
   const H5Context ctx(file);
-  const H5Handle f =
-      ctx.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open", "the file");
+  const H5Handle f = ctx.open_read_only();
   int seeds = 0;
   ctx.check(H5Aread(ctx.own(H5Aopen_by_name(f.get(), "/fields", "seeds", H5P_DEFAULT,
                                             H5P_DEFAULT),

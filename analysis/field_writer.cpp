@@ -3,12 +3,11 @@
 #include <hdf5.h>
 
 #include <algorithm>
-#include <fstream>
-#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "analysis/atomic_file.hpp"
 #include "analysis/hdf5_handle.hpp"
 
 namespace granjet::analysis {
@@ -204,8 +203,6 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
 
 void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
                        const EnsembleResult& result) {
-  std::ofstream out(xmf);
-  if (!out) throw std::runtime_error("'" + xmf.string() + "': cannot write");
   const std::size_t nx = result.edges.lateral.size(), ny = result.edges.height.size();
   const std::string source = xml_escaped(h5_name);
   const auto item = [&](const std::string& dims, const std::string& path) {
@@ -214,25 +211,28 @@ void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_n
            "</DataItem>";
   };
   const std::string cells = std::to_string(ny - 1) + " " + std::to_string(nx - 1);
-  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
-      << "  <Grid Name=\"fields\" GridType=\"Uniform\">\n"
-      << "   <Topology TopologyType=\"2DRectMesh\" Dimensions=\"" << ny << " " << nx << "\"/>\n"
-      << "   <Geometry GeometryType=\"VXVY\">\n    "
-      << item(std::to_string(nx), "/fields/mesh/lateral") << "\n    "
-      << item(std::to_string(ny), "/fields/mesh/height") << "\n   </Geometry>\n";
-  for (const std::string& name : result.fields.names())
-    out << "   <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n    "
-        << item(cells, "/fields/" + path_of(name) + "/mean") << "\n   </Attribute>\n";
-  out << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  if (!out.flush()) throw std::runtime_error("'" + xmf.string() + "': cannot write");
+  write_file_atomically(xmf, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+        << "  <Grid Name=\"fields\" GridType=\"Uniform\">\n"
+        << "   <Topology TopologyType=\"2DRectMesh\" Dimensions=\"" << ny << " " << nx << "\"/>\n"
+        << "   <Geometry GeometryType=\"VXVY\">\n    "
+        << item(std::to_string(nx), "/fields/mesh/lateral") << "\n    "
+        << item(std::to_string(ny), "/fields/mesh/height") << "\n   </Geometry>\n";
+    for (const std::string& name : result.fields.names())
+      out << "   <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n    "
+          << item(cells, "/fields/" + path_of(name) + "/mean") << "\n   </Attribute>\n";
+    out << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  });
 }
 
 std::filesystem::path store_ensemble(const std::filesystem::path& file,
-                                     const EnsembleResult& result) {
+                                     const EnsembleResult& result,
+                                     const std::filesystem::path& published_as) {
   write_analysis_hdf5(file, result);
-  std::filesystem::path xmf = file;
+  const std::filesystem::path& name = published_as.empty() ? file : published_as;
+  std::filesystem::path xmf = name;
   xmf.replace_extension(".fields.xmf");
-  write_fields_xdmf(xmf, file.filename().string(), result);
+  write_fields_xdmf(xmf, name.filename().string(), result);
   return xmf;
 }
 

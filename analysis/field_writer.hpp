@@ -31,8 +31,11 @@ void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_n
                        const EnsembleResult& result);
 
 // Both of the above, the one way every command stores an analysis: /fields and /analysis into
-// `file`, and `file` with the extension .fields.xmf beside it. Returns the sidecar's path.
+// `file`, and a sidecar with the extension .fields.xmf beside the name the file will have,
+// `published_as` (a run's file is written as .partial and renamed last; empty: `file` itself).
+// Returns the sidecar's path.
 std::filesystem::path store_ensemble(const std::filesystem::path& file,
-                                     const EnsembleResult& result);
+                                     const EnsembleResult& result,
+                                     const std::filesystem::path& published_as = {});
 
 }  // namespace granjet::analysis

@@ -36,8 +36,7 @@ class H5mdInput {
     if (H5Fis_hdf5(file.c_str()) <= 0) {
       throw std::runtime_error("'" + file.string() + "' is not a readable HDF5 file");
     }
-    file_ = ctx_.own(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open",
-                     "the HDF5 file");
+    file_ = ctx_.open_read_only();
     // Both are required by granjet's layout; other H5MD writers lack the second.
     for (const char* group : {"/h5md", kParameters}) {
       if (H5Lexists(file_.get(), group, H5P_DEFAULT) <= 0) {

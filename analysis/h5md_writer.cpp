@@ -6,10 +6,12 @@
 #include <array>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
+#include "analysis/file_lock.hpp"
 #include "analysis/hdf5_handle.hpp"
 #include "analysis/xdmf_sidecar.hpp"
 
@@ -48,7 +50,8 @@ class H5mdFile {
            std::size_t max_grains);
   void write_frame(std::int64_t step, double time, const FrameRows& rows);
   void write_observables(std::int64_t step, double time, const Observables& obs);
-  void finish();
+  std::filesystem::path complete();
+  void publish();
   std::filesystem::path abandon(const std::string& reason);
 
  private:
@@ -80,6 +83,7 @@ class H5mdFile {
 
   std::filesystem::path path_;
   H5Context ctx_;
+  std::optional<FileLock> lock_;  // from before the .partial is truncated until it is renamed
   int dimension_;
   hsize_t max_grains_;
   H5Handle file_;  // declared before the datasets, so it is closed after them
@@ -99,6 +103,7 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
     throw std::invalid_argument("H5mdWriter<" + std::to_string(dimension) +
                                 ">: metadata says dimension " + std::to_string(meta.dimension));
   }
+  lock_.emplace(ctx_.file());
   file_ = ctx_.own(H5Fcreate(ctx_.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                    H5Fclose, "create", "the HDF5 file");
   // Missing parent groups are created on the way, so every object is made by its full path.
@@ -204,13 +209,18 @@ void H5mdFile::write_observables(std::int64_t step, double time, const Observabl
   append(sets_.grains, 1, H5T_NATIVE_INT64, &obs.grains);
 }
 
-void H5mdFile::finish() {
+std::filesystem::path H5mdFile::complete() {
   require_open();
   write_string_attribute("/parameters/granjet", "status", "complete");
   close();
   write_xdmf_sidecar(xdmf_path_for(path_), path_.filename().string(), dimension_, max_grains_,
                      frames_);
+  return ctx_.file();
+}
+
+void H5mdFile::publish() {
   std::filesystem::rename(ctx_.file(), path_);
+  lock_.reset();
 }
 
 std::filesystem::path H5mdFile::abandon(const std::string& reason) {
@@ -360,8 +370,19 @@ void H5mdWriter<D>::write_observables(std::int64_t step, double time, const Obse
 }
 
 template <int D>
+std::filesystem::path H5mdWriter<D>::complete() {
+  return file_->complete();
+}
+
+template <int D>
+void H5mdWriter<D>::publish() {
+  file_->publish();
+}
+
+template <int D>
 void H5mdWriter<D>::finish() {
-  file_->finish();
+  complete();
+  publish();
 }
 
 template <int D>

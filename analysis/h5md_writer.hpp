@@ -36,9 +36,10 @@ class H5mdFile;  // the dimension-free part; defined in h5md_writer.cpp to keep 
 template <int D>
 class H5mdWriter {
  public:
-  // Creates `path` + ".partial" (never `path` itself). max_grains (> 0) is the largest number of
-  // grains any frame will hold: grains may only be removed during a run. Throws
-  // std::runtime_error naming the file when it cannot be created.
+  // Creates `path` + ".partial" (never `path` itself) and holds a lock on it until publish().
+  // max_grains (> 0) is the largest number of grains any frame will hold: grains may only be
+  // removed during a run. Throws FileBusyError (analysis/file_lock.hpp) when another run writes
+  // the same file, std::runtime_error naming the file when it cannot be created.
   H5mdWriter(std::filesystem::path path, const RunMetadata& meta, std::size_t max_grains);
   H5mdWriter(const H5mdWriter&) = delete;
   H5mdWriter& operator=(const H5mdWriter&) = delete;
@@ -50,8 +51,12 @@ class H5mdWriter {
   void write_frame(std::int64_t step, double time, const Particles<D>& particles);
   // Appends one row; it becomes durable with the next frame's flush or at the end.
   void write_observables(std::int64_t step, double time, const Observables& obs);
-  // Marks the run complete, closes the file, writes the .xmf sidecar next to the final file
-  // and renames .partial -> path.
+  // Marks the run complete, closes the file and writes the .xmf sidecar next to the final
+  // name. Returns the .partial path, where the caller may add what else the run produced
+  // (/fields, /analysis) before publish() renames it: a file under its final name is complete.
+  std::filesystem::path complete();
+  void publish();
+  // complete() and publish().
   void finish();
   // Stores `reason` as the status, closes the file and keeps it readable as .partial (no
   // sidecar). Returns the .partial path.

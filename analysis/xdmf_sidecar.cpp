@@ -1,8 +1,9 @@
 #include "analysis/xdmf_sidecar.hpp"
 
 #include <charconv>
-#include <fstream>
-#include <stdexcept>
+#include <ostream>
+
+#include "analysis/atomic_file.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -82,37 +83,35 @@ std::filesystem::path xdmf_path_for(const std::filesystem::path& h5_file) {
 
 void write_xdmf_sidecar(const std::filesystem::path& xmf, const std::string& h5_name, int dimension,
                         std::size_t max_grains, std::span<const XdmfFrame> frames) {
-  std::ofstream out(xmf);
-  if (!out) throw std::runtime_error("cannot create XDMF file '" + xmf.string() + "'");
   const Source source{xml_escape(h5_name), dimension, frames.size(), max_grains};
-  out << "<?xml version=\"1.0\" ?>\n"
-      << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-      << "<Xdmf Version=\"2.0\">\n"
-      << "  <Domain>\n"
-      << "    <Grid Name=\"grains\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const std::size_t n = frames[k].grains;
-    // A frame without grains has nothing to draw, so it gets no grid.
-    if (n == 0) continue;
-    out << "      <Grid Name=\"frame " << k << "\" GridType=\"Uniform\">\n"
-        << "        <Time Value=\"" << exact(frames[k].time) << "\"/>\n";
-    // No connectivity DataItem: readers number the vertices 0..n-1 themselves, and ParaView's
-    // Xdmf2 reader only caches (and would reuse) geometry for topologies that have one.
-    out << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-        << "\" NodesPerElement=\"1\"/>\n"
-        << "        <Geometry GeometryType=\"" << (dimension == 3 ? "XYZ" : "XY") << "\">\n";
-    write_hyperslab(out, source, "position", "Float", true, k, n);
-    out << "        </Geometry>\n";
-    write_attribute(out, source, "velocity", "Float", true, k, n);
-    write_attribute(out, source, "radius", "Float", false, k, n);
-    write_attribute(out, source, "id", "Int", false, k, n);
-    out << "      </Grid>\n";
-  }
-  out << "    </Grid>\n"
-      << "  </Domain>\n"
-      << "</Xdmf>\n";
-  out.close();
-  if (!out) throw std::runtime_error("cannot write XDMF file '" + xmf.string() + "'");
+  write_file_atomically(xmf, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\" ?>\n"
+        << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+        << "<Xdmf Version=\"2.0\">\n"
+        << "  <Domain>\n"
+        << "    <Grid Name=\"grains\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      const std::size_t n = frames[k].grains;
+      // A frame without grains has nothing to draw, so it gets no grid.
+      if (n == 0) continue;
+      out << "      <Grid Name=\"frame " << k << "\" GridType=\"Uniform\">\n"
+          << "        <Time Value=\"" << exact(frames[k].time) << "\"/>\n";
+      // No connectivity DataItem: readers number the vertices 0..n-1 themselves, and ParaView's
+      // Xdmf2 reader only caches (and would reuse) geometry for topologies that have one.
+      out << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+          << "\" NodesPerElement=\"1\"/>\n"
+          << "        <Geometry GeometryType=\"" << (dimension == 3 ? "XYZ" : "XY") << "\">\n";
+      write_hyperslab(out, source, "position", "Float", true, k, n);
+      out << "        </Geometry>\n";
+      write_attribute(out, source, "velocity", "Float", true, k, n);
+      write_attribute(out, source, "radius", "Float", false, k, n);
+      write_attribute(out, source, "id", "Int", false, k, n);
+      out << "      </Grid>\n";
+    }
+    out << "    </Grid>\n"
+        << "  </Domain>\n"
+        << "</Xdmf>\n";
+  });
 }
 
 }  // namespace granjet::analysis

@@ -1,9 +1,8 @@
 #include "app/ensemble_output.hpp"
 
-#include <fstream>
-#include <stdexcept>
 
 #include "analysis/analysis_json.hpp"
+#include "analysis/atomic_file.hpp"
 #include "analysis/field_reader.hpp"
 #include "analysis/field_writer.hpp"
 
@@ -38,14 +37,7 @@ int write_ensemble(const std::filesystem::path& out_file, const std::filesystem:
 }
 
 void write_json_atomically(const std::filesystem::path& path, const nlohmann::json& j) {
-  const std::filesystem::path tmp = path.string() + ".partial";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw std::runtime_error("cannot write the summary " + tmp.string());
-    f << j.dump(2) << "\n";
-    if (!f.flush()) throw std::runtime_error("cannot write the summary " + tmp.string());
-  }
-  std::filesystem::rename(tmp, path);
+  analysis::write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 
 }  // namespace granjet

@@ -3,6 +3,7 @@
 #include <boost/program_options.hpp>
 #include <iostream>
 
+#include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "app/analyze_command.hpp"
 #include "app/backend_factory.hpp"
@@ -190,6 +191,12 @@ int main(int argc, char** argv) {
   } catch (const granjet::InputError& e) {
     std::cerr << "granjet: " << e.what() << "\n";
     return 2;
+  } catch (const granjet::analysis::FileBusyError& e) {
+    std::cerr << "granjet: " << e.what() << "; wait for it or name another --out\n";
+    return 2;
+  } catch (const granjet::BlowUpError& e) {  // while building the grains, before any output
+    std::cerr << "granjet: " << e.what() << "\n";
+    return 3;
   } catch (const po::error& e) {
     std::cerr << "granjet " << command << ": " << e.what() << "\n" << kUsage;
     return 2;

@@ -16,7 +16,9 @@
 #include "app/ensemble_output.hpp"
 #include "app/gas_observer.hpp"
 #include "app/inline_analysis.hpp"
+#include "app/output_paths.hpp"
 #include "app/progress_table.hpp"
+#include "app/run_budget.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
@@ -54,10 +56,11 @@ std::optional<double> hard_binary_restitution(const Particles<D>& before, const 
 // The inline analysis of one run as an ensemble of one: /fields and /analysis in the run's
 // file, a .fields.xmf beside it, and the JSON for the summary.
 template <int D>
-nlohmann::json store_analysis(const InlineAnalysis<D>& fields, const std::filesystem::path& file) {
+nlohmann::json store_analysis(const InlineAnalysis<D>& fields, const std::filesystem::path& file,
+                              const std::filesystem::path& published_as) {
   const std::vector<analysis::RunResult> runs{fields.finish()};
   const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  analysis::store_ensemble(file, result);
+  analysis::store_ensemble(file, result, published_as);
   nlohmann::json j = analysis::to_json(result);
   j["seconds"] = fields.seconds();
   return j;
@@ -199,12 +202,15 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       }
     }
   }
+  // Everything the run produced goes into its .partial and the sidecars first; the rename to
+  // the final name comes last, so a file under that name is complete.
+  std::optional<std::filesystem::path> partial;
   if (status == "complete") {
-    writer.finish();
+    partial = writer.complete();
     summary["output"] = out_file.string();
     // A window that never opened (t_end before its start) measured nothing: no all-NaN fields.
     if (fields && fields->window_sampled())
-      summary["analysis"] = store_analysis<D>(*fields, out_file);
+      summary["analysis"] = store_analysis<D>(*fields, *partial, out_file);
     else if (fields)
       std::cerr << "granjet: the analysis window " << scene.analysis.window_start << ".."
                 << scene.analysis.window_end << " never started (the run ended at t = "
@@ -229,6 +235,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     }
   }
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
+  if (partial) writer.publish();
   return status == "complete" ? 0 : 3;
 }
 
@@ -261,8 +268,16 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
 
 int run_command(const RunOptions& options, std::ostream& out) {
   const Scene scene = load_scene(options.scene_file, options.overrides);
+  check_backend(options.backend, scene);
+  check_run_budget(scene, options.backend, physical_memory_bytes());
   std::filesystem::path out_file = options.out;
   if (out_file.empty()) out_file = options.scene_file.stem().string() + ".h5";
+  std::vector<OutputPath> outputs = run_outputs(out_file, options.summary);
+  for (const std::uint64_t seed : options.seeds)
+    for (OutputPath& o : run_outputs(member_file(out_file, seed), member_file(options.summary, seed),
+                                     "seed " + std::to_string(seed) + "'s"))
+      outputs.push_back(std::move(o));
+  check_outputs(options.scene_file, outputs);
   if (!options.seeds.empty())
     return scene.dimension == 2 ? run_ensemble<2>(scene, options, out_file, out)
                                 : run_ensemble<3>(scene, options, out_file, out);

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 
 namespace granjet::analysis {
@@ -216,6 +217,44 @@ TEST_F(H5mdWriterTest, FlushedFramesSurviveAKilledRun) {
   EXPECT_EQ(summary.status, "running");
   EXPECT_EQ(summary.frames, 2u);
   expect_frames_read_back<3>(partial(file), 2);
+}
+
+// Whatever else a run stores (/fields, /analysis) goes into the .partial between complete() and
+// publish(): until the rename nothing is under the final name, and the sidecar is already there.
+TEST_F(H5mdWriterTest, CompletedRunStaysPartialUntilPublished) {
+  const fs::path file = dir_ / "run.h5";
+  H5mdWriter<3> writer(file, metadata(3), 5);
+  write_frames(writer, 2);
+  EXPECT_EQ(writer.complete(), partial(file));
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_EQ(read_summary(partial(file)).status, "complete");
+  EXPECT_TRUE(fs::exists(dir_ / "run.xmf"));
+  EXPECT_FALSE(fs::exists(dir_ / "run.xmf.partial"));
+  writer.publish();
+  EXPECT_TRUE(fs::exists(file));
+  EXPECT_FALSE(fs::exists(partial(file)));
+}
+
+// A second writer of the same file finds it busy and leaves the first one's frames alone.
+TEST_F(H5mdWriterTest, SecondWriterOfTheSameFileIsRefused) {
+  const fs::path file = dir_ / "run.h5";
+  H5mdWriter<3> first(file, metadata(3), 5);
+  write_frames(first, 2);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    try {
+      H5mdWriter<3> second(file, metadata(3), 5);
+    } catch (const FileBusyError&) {
+      std::_Exit(2);
+    }
+    std::_Exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2);
+  first.finish();
+  expect_frames_read_back<3>(file, 2);
 }
 
 TEST_F(H5mdWriterTest, WritingAfterFinishIsRefused) {

@@ -1,0 +1,31 @@
+// An exclusive lock on a file being written, held for as long as the writer lives: a second run
+// with the same --out finds it busy instead of truncating the first one's file. Linux
+// open-file-description locks: they go with the process when it dies (kill -9 included), and
+// they do not meet HDF5's own flock() locks.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace granjet::analysis {
+
+// Another process holds the lock.
+class FileBusyError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class FileLock {
+ public:
+  // Creates `path` if missing (empty; never truncates) and locks it. Throws FileBusyError when
+  // another process holds it, std::runtime_error when it cannot be opened.
+  explicit FileLock(const std::filesystem::path& path);
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  ~FileLock();
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace granjet::analysis

@@ -1,0 +1,138 @@
+// Inputs that used to crash, hang, destroy a file or leave an incomplete file under its final
+// name (issue 14): each command now exits 2 naming the key or option, writes nothing and leaves
+// the input as it was, or gives a correct result.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "analysis/file_lock.hpp"
+#include "analysis/h5md_writer.hpp"
+#include "command_fixture.hpp"
+
+namespace granjet {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BadInput : public testing::CommandTest {
+ protected:
+  // The directory's entries, to show that a refused command wrote nothing.
+  std::set<fs::path> entries() const {
+    std::set<fs::path> found;
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().filename() != "stdout.txt" && e.path().filename() != "stderr.txt")
+        found.insert(e.path());
+    return found;
+  }
+  static std::string text_of(const fs::path& file) {
+    std::ifstream in(file);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  // Exit 2, `needle` in the message, and no file added or changed.
+  void expect_refused(const std::string& args, const std::string& needle) {
+    const std::set<fs::path> before = entries();
+    EXPECT_EQ(granjet(args), 2) << args << "\n" << err_;
+    EXPECT_NE(err_.find(needle), std::string::npos) << args << "\n" << err_;
+    EXPECT_EQ(entries(), before) << args;
+  }
+};
+
+TEST_F(BadInput, OutputThatIsTheSceneOrTheOtherOutputIsRefused) {
+  const fs::path copy = dir_ / "binary.ini";
+  fs::copy_file(scene("binary.ini"), copy);
+  const std::string original = text_of(copy);
+  expect_refused("run " + copy.string() + " --out " + copy.string(), "is the input file");
+  expect_refused("run " + copy.string() + " --summary " + copy.string(), "is the input file");
+  EXPECT_EQ(text_of(copy), original);
+  const std::string x = (dir_ / "x").string();
+  expect_refused("run " + copy.string() + " --out " + x + " --summary " + x,
+                 "would be both the run's summary and the run's file");
+  // The XDMF sidecar of a.xmf would be a.xmf itself.
+  expect_refused("run " + copy.string() + " --out " + (dir_ / "a.xmf").string(),
+                 "XDMF sidecar and the run's file");
+}
+
+TEST_F(BadInput, OutputThatExistsAndIsNotARegularFileIsRefused) {
+  fs::create_directory(dir_ / "taken");
+  expect_refused("run " + scene("binary.ini") + " --out " + (dir_ / "taken").string(),
+                 "not a regular file");
+  // As root this used to replace the device node by an HDF5 file.
+  expect_refused("run " + scene("binary.ini") + " --out /dev/null", "not a regular file");
+  struct stat device {};
+  ASSERT_EQ(::stat("/dev/null", &device), 0);
+  EXPECT_TRUE(S_ISCHR(device.st_mode));
+  expect_refused("run " + scene("binary.ini") + " --out " + (dir_ / "no/such/dir/x.h5").string(),
+                 "no directory");
+}
+
+// A second run with the same --out used to truncate the first one's .partial, which then ended
+// "complete" with an unreadable file.
+TEST_F(BadInput, ABusyOutputIsRefusedAndLeftAlone) {
+  const fs::path partial = dir_ / "x.h5.partial";
+  std::ofstream(partial) << "the first run's frames";
+  const analysis::FileLock first_run(partial);
+  EXPECT_EQ(granjet("run " + scene("binary.ini") + " --quiet --out " + (dir_ / "x.h5").string()), 2)
+      << err_;
+  EXPECT_NE(err_.find("being written by another granjet run"), std::string::npos) << err_;
+  EXPECT_EQ(text_of(partial), "the first run's frames");
+  EXPECT_FALSE(fs::exists(dir_ / "x.h5"));
+}
+
+// A user watches a run: `info` reads its .partial while the writer holds it open.
+TEST_F(BadInput, InfoReadsARunningPartial) {
+  analysis::RunMetadata meta;
+  meta.backend = "soft_dem";
+  meta.scene_ini = "[scene]\nkind = binary\n";
+  analysis::H5mdWriter<3> writer(dir_ / "run.h5", meta, 2);
+  Particles<3> p;
+  p.add(0, GrainKind::kFree, Vec<3>(0, 0, 0), Vec<3>(1, 0, 0), 0.5, 1.0);
+  writer.write_frame(0, 0.0, p);
+  ASSERT_EQ(granjet("info " + (dir_ / "run.h5.partial").string()), 0) << err_;
+  EXPECT_NE(text_of(dir_ / "stdout.txt").find("status: running"), std::string::npos);
+}
+
+TEST_F(BadInput, SceneFilesThatAreNoScenesAreRefused) {
+  std::ofstream(dir_ / "empty.ini").close();
+  std::ofstream(dir_ / "twice.ini") << "[scene]\nkind = jet\nkind = binary\n";
+  expect_refused("run " + (dir_ / "empty.ini").string(), "names no scene.kind");
+  expect_refused("run " + dir_.string(), "not a regular file");
+  expect_refused("run " + (dir_ / "twice.ini").string(), "lines 2 and 3");
+}
+
+TEST_F(BadInput, ValuesThatCrashedHungOrWrappedAreRefused) {
+  const std::string jet = "run " + scene("jet3d.ini") + " --set ";
+  expect_refused(jet + "run.threads=4294967296", "run.threads");
+  expect_refused(jet + "run.threads=4294967298", "run.threads");
+  expect_refused(jet + "analysis.lateral_bins=4294967297", "analysis.lateral_bins");
+  expect_refused(jet + "jet.grains=500000000", "jet.grains");
+  expect_refused(jet + "jet.phi_tilde=1e-308", "jet.phi_tilde");
+  expect_refused(jet + "jet.spacing=1e308", "jet.spacing");
+  expect_refused(jet + "output.interval=1e-17", "output.interval");
+  expect_refused(jet + "run.dt=1e-308", "run.dt");
+  expect_refused(jet + "run.skin=1e12", "run.skin");
+  const std::string gas = "run " + scene("gas3d.ini") + " --set ";
+  expect_refused(gas + "gas.grains=9223372036854775807", "gas.grains");
+  expect_refused(gas + "gas.phi=1e-308", "gas.phi");
+  expect_refused(gas + "gas.temperature=1e308", "gas.temperature");
+  expect_refused(gas + "gas.sample_interval=1e-17 --backend event_driven", "gas.sample_interval");
+  expect_refused("run " + scene("binary.ini") + " --seeds 1..20000", "at most 10000");
+}
+
+// The range's end is the largest seed: the loop used to wrap around and grow without end.
+TEST_F(BadInput, ASeedRangeEndingAtTheLargestSeedRunsOnce) {
+  ASSERT_EQ(granjet("run " + scene("binary.ini") +
+                    " --quiet --seeds 18446744073709551615..18446744073709551615 --out " +
+                    (dir_ / "b.h5").string()),
+            0)
+      << err_;
+  EXPECT_TRUE(fs::exists(dir_ / "b.seed18446744073709551615.h5"));
+}
+
+}  // namespace
+}  // namespace granjet
