@@ -74,7 +74,7 @@ std::size_t rows_of(hid_t file, const std::string& dataset, const H5Context& ctx
 
 std::vector<double> read_analysis_values(const std::filesystem::path& file,
                                          const std::string& dataset) {
-  const H5Context ctx(file);
+  const H5Context ctx(file, H5Context::Role::kInput);
   const H5Handle f = ctx.open_read_only();
   return read_doubles(f.get(), dataset, ctx);
 }
@@ -82,7 +82,7 @@ std::vector<double> read_analysis_values(const std::filesystem::path& file,
 bool has_analysis(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
-  const H5Context ctx(file);
+  const H5Context ctx(file, H5Context::Role::kInput);
   if (H5Fis_hdf5(file.c_str()) <= 0) return false;
   try {
     const H5Handle f = ctx.open_read_only();
@@ -96,7 +96,7 @@ bool has_analysis(const std::filesystem::path& file) {
 RunResult read_run_result(const std::filesystem::path& file) {
   if (!has_analysis(file))
     throw std::runtime_error("'" + file.string() + "' holds no stored analysis (/fields)");
-  const H5Context ctx(file);
+  const H5Context ctx(file, H5Context::Role::kInput);
   const H5Handle f = ctx.open_read_only();
   int seeds = 0;
   ctx.check(H5Aread(ctx.own(H5Aopen_by_name(f.get(), "/fields", "seeds", H5P_DEFAULT,

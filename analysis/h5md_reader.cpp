@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 #include <stdexcept>
 #include <type_traits>
@@ -32,15 +33,16 @@ hid_t native_type() {
 // A granjet H5MD file opened read-only, with the few typed reads the callers need.
 class H5mdInput {
  public:
-  explicit H5mdInput(const std::filesystem::path& file) : ctx_(file) {
-    if (H5Fis_hdf5(file.c_str()) <= 0) {
-      throw std::runtime_error("'" + file.string() + "' is not a readable HDF5 file");
+  explicit H5mdInput(const std::filesystem::path& file) : ctx_(file, H5Context::Role::kInput) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec) || H5Fis_hdf5(file.c_str()) <= 0) {
+      throw InputError(file.string(), "is not a readable HDF5 file");
     }
     file_ = ctx_.open_read_only();
     // Both are required by granjet's layout; other H5MD writers lack the second.
     for (const char* group : {"/h5md", kParameters}) {
       if (H5Lexists(file_.get(), group, H5P_DEFAULT) <= 0) {
-        throw std::runtime_error("'" + file.string() + "' is not a granjet H5MD file (no " + group +
+        throw InputError(file.string(), std::string("is not a granjet H5MD file (no ") + group +
                                  ")");
       }
     }
@@ -155,6 +157,9 @@ FileSummary read_summary(const std::filesystem::path& file) {
   summary.backend = in.string_attribute(kParameters, "backend");
   summary.status = in.string_attribute(kParameters, "status");
   in.read_ints(kParameters, "dimension", std::span(&summary.dimension, 1));
+  if (summary.dimension != 2 && summary.dimension != 3)
+    throw InputError(file.string(), "stores dimension " + std::to_string(summary.dimension) +
+                                        "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
   summary.frames = in.extent(kFrameStep, 1)[0];
   summary.max_grains = in.extent(kPosition, 3)[1];
@@ -182,6 +187,25 @@ void print_summary(const FileSummary& summary, std::ostream& out) {
       << " lines of INI stored\n";
 }
 
+// A damaged or foreign file must not reach the analysis: it indexes by id and divides by radii.
+template <int D>
+void validate_frame(const Frame<D>& frame, const std::filesystem::path& file, std::size_t index) {
+  const auto bad = [&](const std::string& what) {
+    return InputError(file.string(), "frame " + std::to_string(index) + ": " + what);
+  };
+  if (!std::isfinite(frame.time)) throw bad("its time is not finite");
+  for (std::size_t k = 0; k < frame.id.size(); ++k) {
+    const std::string row = "row " + std::to_string(k) + " (grain id " + std::to_string(frame.id[k]) + ")";
+    if (frame.id[k] < 0) throw bad(row + ": a negative id among the grains");
+    if (k > 0 && frame.id[k] <= frame.id[k - 1])
+      throw bad(row + ": ids are not increasing (granjet stores each frame sorted by id)");
+    if (!frame.position[k].allFinite() || !frame.velocity[k].allFinite())
+      throw bad(row + ": a position or velocity that is not finite");
+    if (!(std::isfinite(frame.radius[k]) && frame.radius[k] > 0.0))
+      throw bad(row + ": radius " + std::to_string(frame.radius[k]) + " is not positive and finite");
+  }
+}
+
 template <int D>
 Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
   // Vectors are read straight into the storage of std::vector<Vec<D>>.
@@ -190,7 +214,7 @@ Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
   int dimension = 0;
   in.read_ints(kParameters, "dimension", std::span(&dimension, 1));
   if (dimension != D) {
-    throw std::runtime_error("'" + file.string() + "' holds " + std::to_string(dimension) +
+    throw InputError(file.string(), "holds " + std::to_string(dimension) +
                              "D grains, not " + std::to_string(D) + "D");
   }
   const hsize_t frames = in.extent(kFrameStep, 1)[0];
@@ -215,6 +239,7 @@ Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
   in.read(kPosition, {index, 0, 0}, {1, n, D}, H5T_NATIVE_DOUBLE, frame.position.data());
   in.read(kVelocity, {index, 0, 0}, {1, n, D}, H5T_NATIVE_DOUBLE, frame.velocity.data());
   in.read(kRadius, {index, 0}, {1, n}, H5T_NATIVE_DOUBLE, frame.radius.data());
+  validate_frame(frame, file, index);
   return frame;
 }
 

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <utility>
 
+#include "core/errors.hpp"
+
 namespace granjet::analysis {
 
 // Owns one HDF5 identifier of any kind; `close` (H5Fclose, H5Dclose, ...) says which, so one
@@ -45,20 +47,27 @@ class H5Handle {
   Closer close_ = nullptr;
 };
 
-// Turns failed HDF5 calls on one file into std::runtime_error naming the file and the object.
+// Turns failed HDF5 calls on one file into exceptions naming the file and the object: an
+// InputError (exit code 2) for a file granjet reads, a std::runtime_error for one it writes.
 // HDF5's own error stack is silenced: it prints library internals that do not help a user.
 class H5Context {
  public:
-  explicit H5Context(std::filesystem::path file) : file_(std::move(file)) {
+  enum class Role { kOutput, kInput };
+
+  explicit H5Context(std::filesystem::path file, Role role = Role::kOutput)
+      : file_(std::move(file)), role_(role) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }
 
   const std::filesystem::path& file() const { return file_; }
 
   [[noreturn]] void fail(std::string_view action, std::string_view object) const {
+    std::string what = "cannot ";
+    what.append(action).append(" ").append(object);
+    if (role_ == Role::kInput) throw InputError(file_.string(), what);
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + std::string once inlined.
     std::string message = "'";
-    message.append(file_.string()).append("': cannot ").append(action).append(" ").append(object);
+    message.append(file_.string()).append("': ").append(what);
     throw std::runtime_error(message);
   }
   H5Handle own(hid_t id, H5Handle::Closer close, std::string_view action,
@@ -82,6 +91,7 @@ class H5Context {
 
  private:
   std::filesystem::path file_;
+  Role role_;
 };
 
 }  // namespace granjet::analysis

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -132,6 +133,44 @@ TEST_F(BadInput, ASeedRangeEndingAtTheLargestSeedRunsOnce) {
             0)
       << err_;
   EXPECT_TRUE(fs::exists(dir_ / "b.seed18446744073709551615.h5"));
+}
+
+// A frame as a damaged or foreign file may hold it: analyze used to segfault on id -1 and
+// accepted non-finite positions and negative radii.
+TEST_F(BadInput, AnalyzeRefusesFramesWithImpossibleGrains) {
+  struct Damage {
+    const char* name;
+    GrainId id;
+    double x, radius;
+    const char* message;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Damage& d : {Damage{"id", -1, 0.0, 0.5, "negative id"},
+                          Damage{"nan", 5, nan, 0.5, "not finite"},
+                          Damage{"inf", 5, std::numeric_limits<double>::infinity(), 0.5, "not finite"},
+                          Damage{"radius", 5, 0.0, -0.5, "radius"}}) {
+    const fs::path file = dir_ / (std::string(d.name) + ".h5");
+    analysis::RunMetadata meta;
+    meta.backend = "soft_dem";
+    meta.dimension = 2;
+    meta.scene_ini = "[scene]\nkind = jet\ndimension = 2\n[output]\ninterval = 1\n"
+                     "[analysis]\nwindow_start = 0\nwindow_end = 2\n";
+    {
+      analysis::H5mdWriter<2> writer(file, meta, 3);
+      for (int frame = 0; frame < 3; ++frame) {
+        Particles<2> p;
+        p.add(0, GrainKind::kFree, Vec<2>(1.0, 0.0), Vec<2>(-1.0, 0.0), 0.5, 1.0);
+        p.add(d.id, GrainKind::kFree, Vec<2>(d.x, 3.0), Vec<2>(-1.0, 0.0), d.radius, 1.0);
+        p.add(7, GrainKind::kFree, Vec<2>(2.0, 50.0), Vec<2>(0.0, 1.0), 0.5, 1.0);
+        writer.write_frame(frame, frame, p);
+      }
+      writer.finish();
+    }
+    const auto before = fs::last_write_time(file);
+    EXPECT_EQ(granjet("analyze " + file.string()), 2) << d.name << "\n" << err_;
+    EXPECT_NE(err_.find(d.message), std::string::npos) << err_;
+    EXPECT_EQ(fs::last_write_time(file), before) << d.name;
+  }
 }
 
 }  // namespace
