@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
@@ -15,6 +16,7 @@ namespace {
 
 constexpr const char* kParameters = "/parameters/granjet";
 constexpr const char* kScene = "/parameters/granjet/scene";
+constexpr const char* kMembers = "/parameters/granjet/members";
 constexpr const char* kFrameStep = "/particles/all/position/step";
 constexpr const char* kFrameTime = "/particles/all/position/time";
 constexpr const char* kFrameGrains = "/observables/frame_grains/value";
@@ -70,6 +72,8 @@ class H5mdInput {
     return fixed_string(type.get(), space.get(), what,
                         [&](char* buffer) { return H5Aread(attribute.get(), type.get(), buffer); });
   }
+
+  bool exists(const char* name) const { return H5Lexists(file_.get(), name, H5P_DEFAULT) > 0; }
 
   std::string string_dataset(const char* name) const {
     const OpenDataset scalar = open_dataset(name, 0);
@@ -161,6 +165,11 @@ FileSummary read_summary(const std::filesystem::path& file) {
     throw InputError(file.string(), "stores dimension " + std::to_string(summary.dimension) +
                                         "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
+  if (in.exists(kMembers)) {
+    std::istringstream lines(in.string_dataset(kMembers));
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) summary.members.push_back(line);
+  }
   summary.frames = in.extent(kFrameStep, 1)[0];
   summary.max_grains = in.extent(kPosition, 3)[1];
   summary.observable_rows = in.extent(kObservableStep, 1)[0];
@@ -185,6 +194,11 @@ void print_summary(const FileSummary& summary, std::ostream& out) {
   out << "\nobservables: " << summary.observable_rows << " rows\n"
       << "scene: " << std::count(summary.scene_ini.begin(), summary.scene_ini.end(), '\n')
       << " lines of INI stored\n";
+  if (!summary.members.empty()) {
+    out << "ensemble of " << summary.members.size() << " runs (/fields and /analysis combined):";
+    for (const std::string& member : summary.members) out << ' ' << member;
+    out << '\n';
+  }
 }
 
 // A damaged or foreign file must not reach the analysis: it indexes by id and divides by radii.

@@ -26,6 +26,8 @@ struct FileSummary {
   std::int64_t last_step = 0;
   std::size_t observable_rows = 0;
   std::string scene_ini;
+  // An ensemble file's member runs, relative to its directory; empty for a run's file.
+  std::vector<std::string> members;
 };
 
 // Throws std::runtime_error naming the file if it is not a granjet H5MD file.

@@ -73,6 +73,7 @@ class H5mdFile {
   void write_attribute(const char* object, const char* name, hid_t type, hid_t space,
                        const void* data) const;
   void write_string_attribute(const char* object, const char* name, const std::string& value) const;
+  void write_string_dataset(const char* name, const std::string& value) const;
   Dataset create_series(std::string name, hid_t type, const std::vector<hsize_t>& row_shape,
                         const void* fill) const;
   // H5MD lets elements sampled together share one step and one time dataset.
@@ -164,17 +165,23 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   write_attribute("/parameters/granjet", "dimension", H5T_NATIVE_INT, dataspace({}).get(),
                   &dimension_);
   write_string_attribute("/parameters/granjet", "status", "running");
-  // A dataset, not an attribute: the scene may exceed the 64 KiB attribute limit.
-  const char* scene_name = "/parameters/granjet/scene";
-  const H5Handle type = string_type(meta.scene_ini.size() + 1);
-  const H5Handle scene =
-      ctx_.own(H5Dcreate2(file_.get(), scene_name, type.get(), dataspace({}).get(),
-                          link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
-               H5Dclose, "create", scene_name);
-  ctx_.check(
-      H5Dwrite(scene.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, meta.scene_ini.c_str()),
-      "write", scene_name);
+  write_string_dataset("/parameters/granjet/scene", meta.scene_ini);
+  if (!meta.members.empty()) {
+    std::string lines;
+    for (const std::string& member : meta.members) lines += member + "\n";
+    write_string_dataset("/parameters/granjet/members", lines);
+  }
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
+}
+
+// A dataset, not an attribute: the scene may exceed the 64 KiB attribute limit.
+void H5mdFile::write_string_dataset(const char* name, const std::string& value) const {
+  const H5Handle type = string_type(value.size() + 1);
+  const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), name, type.get(), dataspace({}).get(),
+                                           link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
+                                H5Dclose, "create", name);
+  ctx_.check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()),
+             "write", name);
 }
 
 void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows) {
@@ -213,8 +220,13 @@ std::filesystem::path H5mdFile::complete() {
   require_open();
   write_string_attribute("/parameters/granjet", "status", "complete");
   close();
-  write_xdmf_sidecar(xdmf_path_for(path_), path_.filename().string(), dimension_, max_grains_,
-                     frames_);
+  // An ensemble file holds no frames: nothing to draw, and a sidecar of frames that an earlier
+  // file of this name held would show what is gone.
+  if (frames_.empty())
+    std::filesystem::remove(xdmf_path_for(path_));
+  else
+    write_xdmf_sidecar(xdmf_path_for(path_), path_.filename().string(), dimension_, max_grains_,
+                       frames_);
   return ctx_.file();
 }
 

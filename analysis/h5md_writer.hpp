@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/particles.hpp"
 
@@ -19,6 +20,9 @@ struct RunMetadata {
   std::string backend;          // "soft_dem" | "event_driven"
   std::string scene_ini;        // the full resolved scene as INI text, so the run can be redone
   int dimension = 3;            // must match the writer's D
+  // An ensemble file (no frames; /fields and /analysis combined over seeds): its member runs'
+  // files, relative to its directory.
+  std::vector<std::string> members;
 };
 
 struct Observables {

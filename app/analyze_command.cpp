@@ -1,8 +1,8 @@
 #include "app/analyze_command.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
@@ -11,6 +11,7 @@
 #include "analysis/field_writer.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/run_analysis.hpp"
+#include "app/ensemble_output.hpp"
 #include "app/scene_file.hpp"
 #include "core/errors.hpp"
 
@@ -35,35 +36,60 @@ Particles<D> particles_of(const analysis::Frame<D>& frame, const Scene& scene) {
   return p;
 }
 
+// The analysis of one run's stored frames in the window; `used` counts the frames in it.
 template <int D>
-int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
-            const Scene& scene, std::ostream& out) {
+analysis::RunResult analyse_frames(const std::filesystem::path& file,
+                                   const std::optional<std::pair<double, double>>& window,
+                                   std::size_t& used) {
+  const analysis::FileSummary stored = analysis::read_summary(file);
+  if (stored.dimension != D)
+    throw InputError(file.string(), "holds " + std::to_string(stored.dimension) + "D grains, not " +
+                                        std::to_string(D) + "D like the others");
+  std::istringstream ini(stored.scene_ini);
+  const Scene scene = parse_scene(ini, file.string() + " (stored scene)", {});
   analysis::AnalysisConfig config = analysis::AnalysisConfig::for_scene(scene);
-  if (options.window) std::tie(config.window_start, config.window_end) = *options.window;
+  if (window) std::tie(config.window_start, config.window_end) = *window;
   // Every stored frame is a sample.
   if (scene.output.interval > 0.0) config.sample_interval = scene.output.interval;
   analysis::RunAnalysis<D> run(config);
-  std::size_t used = 0;
+  used = 0;
   for (std::size_t k = 0; k < stored.frames; ++k) {
-    const analysis::Frame<D> frame = analysis::read_frame<D>(options.file, k);
+    const analysis::Frame<D> frame = analysis::read_frame<D>(file, k);
     if (!run.due(frame.time)) continue;
     run.sample(frame.time, particles_of(frame, scene));
     used += run.in_window(frame.time);
   }
   if (used == 0)
-    throw InputError("--window", "no stored frame lies in " + std::to_string(config.window_start) +
-                                     ".." + std::to_string(config.window_end));
-  const std::vector<analysis::RunResult> runs{run.finish()};
+    throw InputError("--window", file.string() + ": no stored frame lies in " +
+                                     std::to_string(config.window_start) + ".." +
+                                     std::to_string(config.window_end));
+  return run.finish();
+}
+
+// A run's file: its own frames. An ensemble's file (no frames): each member run's frames,
+// combined over the seeds as `granjet run --seeds` does; the members are left as they are.
+template <int D>
+int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
+            std::ostream& out) {
+  std::vector<std::filesystem::path> files{options.file};
+  if (!stored.members.empty()) {
+    files.clear();
+    const std::filesystem::path here = options.file.parent_path();
+    for (const std::string& member : stored.members) files.push_back(here / member);
+  }
+  std::vector<analysis::RunResult> runs;
+  std::size_t frames = 0;
+  for (const std::filesystem::path& file : files) {
+    std::size_t used = 0;
+    runs.push_back(analyse_frames<D>(file, options.window, used));
+    frames += used;
+  }
   const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
   const std::filesystem::path xmf = analysis::store_ensemble(options.file, result);
-  out << "analysed " << used << " frames in " << config.window_start << ".." << config.window_end
-      << "; wrote /fields and /analysis into " << options.file.string() << " and "
-      << xmf.string() << "\n";
-  if (!options.summary.empty()) {
-    std::ofstream f(options.summary);
-    if (!f) throw std::runtime_error("cannot write the summary " + options.summary.string());
-    f << analysis::to_json(result).dump(2) << "\n";
-  }
+  out << "analysed " << frames << " frames of " << runs.size() << " run(s); wrote /fields and "
+      << "/analysis into " << options.file.string() << " and " << xmf.string() << "\n";
+  if (!options.summary.empty())
+    write_json_atomically(options.summary, analysis::to_json(result));
   return 0;
 }
 
@@ -73,10 +99,7 @@ int analyze_command(const AnalyzeOptions& options, std::ostream& out) {
   const analysis::FileSummary stored = analysis::read_summary(options.file);
   if (options.window && !(options.window->second > options.window->first))
     throw InputError("--window", "expected t0:t1 with t1 > t0");
-  std::istringstream ini(stored.scene_ini);
-  const Scene scene = parse_scene(ini, options.file.string() + " (stored scene)", {});
-  return stored.dimension == 2 ? analyze<2>(options, stored, scene, out)
-                               : analyze<3>(options, stored, scene, out);
+  return stored.dimension == 2 ? analyze<2>(options, stored, out) : analyze<3>(options, stored, out);
 }
 
 }  // namespace granjet

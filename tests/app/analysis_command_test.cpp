@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/field_reader.hpp"
+#include "analysis/h5md_reader.hpp"
 
 namespace granjet {
 namespace {
@@ -65,9 +66,23 @@ TEST(AnalysisCommand, SeedsMakeAnEnsembleWithItsSpread) {
   const std::string base = "run " + std::string(GRANJET_SCENES_DIR) + "/jet3d.ini --quiet" +
                            " --set jet.grains=1500 --set run.t_end=5 --set output.interval=0" +
                            " --set analysis.window_start=3 --set analysis.window_end=5";
+  // Another run's file under the ensemble's name is replaced, not merged into.
+  ASSERT_EQ(run(base + " --set run.seed=9 --out " + (dir / "e.h5").string()), 0);
   ASSERT_EQ(run(base + " --seeds 1,2 --out " + (dir / "e.h5").string() + " --summary " +
                 (dir / "e.json").string()),
             0);
+  const analysis::FileSummary stored = analysis::read_summary(dir / "e.h5");
+  EXPECT_EQ(stored.frames, 0u);
+  EXPECT_EQ(stored.status, "complete");
+  EXPECT_EQ(stored.members, (std::vector<std::string>{"e.seed1.h5", "e.seed2.h5"}));
+  EXPECT_FALSE(fs::exists(dir / "e.h5.partial"));
+  EXPECT_FALSE(fs::exists(dir / "e.xmf"));  // the other run's frames sidecar went with them
+  EXPECT_EQ(run("info " + (dir / "e.h5").string()), 0);
+  // analyze re-analyses the members' frames in a new window and combines them again.
+  ASSERT_EQ(run("analyze " + (dir / "e.h5").string() + " --window 4:5 --summary " +
+                (dir / "re.json").string()),
+            0);
+  EXPECT_EQ(read_json(dir / "re.json")["seeds"], 2);
   EXPECT_TRUE(fs::exists(dir / "e.seed1.h5"));
   EXPECT_TRUE(fs::exists(dir / "e.seed2.json"));
   const nlohmann::json e = read_json(dir / "e.json");
