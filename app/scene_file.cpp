@@ -454,6 +454,12 @@ void validate_scene(const Scene& s) {
                                    format_number(s.contact.contact_time));
   if (s.periodic()) validate_gas(s);
   if (s.kind == SceneKind::kJet) validate_wall(s);
+  if (s.kind == SceneKind::kJet && s.region.radius <= s.jet.outer_radius())
+    throw InputError("region.radius",
+                     format_number(s.region.radius) + " cuts the jet (outer radius " +
+                         format_number(s.jet.outer_radius()) +
+                         "): its grains would be removed before they reach the target; it must "
+                         "be larger");
   if (s.analysis.scatter_radius >= s.region.radius)
     throw InputError("analysis.scatter_radius",
                      format_number(s.analysis.scatter_radius) +

@@ -99,7 +99,7 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
     schedule(i);
   }
   take_snapshot();
-  initial_energy_ = energy().total();
+  initial_energy_ = energy().total() + removed_energy_;  // removed at the start counts
   if (verify_ == Verification::kOn) check_no_overlaps();
 }
 

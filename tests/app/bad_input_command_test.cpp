@@ -117,6 +117,7 @@ TEST_F(BadInput, ValuesThatCrashedHungOrWrappedAreRefused) {
   expect_refused(jet + "output.interval=1e-17", "output.interval");
   expect_refused(jet + "run.dt=1e-308", "run.dt");
   expect_refused(jet + "run.skin=1e12", "run.skin");
+  expect_refused("run " + scene("jet2d.ini") + " --set region.radius=10", "cuts the jet");
   const std::string gas = "run " + scene("gas3d.ini") + " --set ";
   expect_refused(gas + "gas.grains=9223372036854775807", "gas.grains");
   expect_refused(gas + "gas.phi=1e-308", "gas.phi");

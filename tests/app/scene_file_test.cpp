@@ -152,6 +152,8 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"scene.dimension=2", "wall.lattice=square"}, "wall.lattice", "3D lattice");
   expect_refused({"analysis.scatter_radius=44"}, "analysis.scatter_radius",
                  "smaller than region.radius = 44");
+  // A removal region inside the jet took its outer grains before they reached the target.
+  expect_refused({"region.radius=5"}, "region.radius", "cuts the jet (outer radius 5)");
   expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");
 }
