@@ -19,6 +19,7 @@
 #include "app/output_paths.hpp"
 #include "app/progress_table.hpp"
 #include "app/run_budget.hpp"
+#include "app/run_warnings.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
@@ -106,6 +107,8 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, scene);
   for (const std::string& note : backend_notes(options.backend, scene))
     std::cerr << "granjet: " << note << "\n";
+  const std::vector<std::string> warnings = run_warnings(scene, options.backend);
+  for (const std::string& warning : warnings) std::cerr << "granjet: warning: " << warning << "\n";
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
   analysis::RunMetadata meta;
   meta.creator_version = std::string(kVersion) + "+" + kCommit;  // semver build metadata
@@ -170,6 +173,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   }
   const double wall = progress.elapsed_seconds();
   nlohmann::json summary = summary_json(scene, options.backend, *sim, grains_initial, wall, status);
+  if (!warnings.empty()) summary["warnings"] = warnings;
   if (binary && tracker.complete()) {
     summary["measured"] = {{"restitution", tracker.restitution()},
                            {"contact_time", tracker.contact_time()}};
@@ -211,10 +215,8 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     // A window that never opened (t_end before its start) measured nothing: no all-NaN fields.
     if (fields && fields->window_sampled())
       summary["analysis"] = store_analysis<D>(*fields, *partial, out_file);
-    else if (fields)
-      std::cerr << "granjet: the analysis window " << scene.analysis.window_start << ".."
-                << scene.analysis.window_end << " never started (the run ended at t = "
-                << sim->time() << "); no fields written\n";
+    else if (fields)  // run_warnings said so before the run
+      std::cerr << "granjet: no fields written: the analysis window never started\n";
   }
   if (!options.quiet || status != "complete") {
     const SimStats s = sim->stats();

@@ -126,6 +126,26 @@ TEST_F(BadInput, ValuesThatCrashedHungOrWrappedAreRefused) {
   expect_refused("run " + scene("binary.ini") + " --seeds 1..20000", "at most 10000");
 }
 
+// Valid runs that measure nothing used to end "complete" without a word.
+TEST_F(BadInput, RunsThatMeasureNothingWarn) {
+  const std::string out = " --quiet --out " + (dir_ / "w.h5").string() + " --summary " +
+                          (dir_ / "w.json").string();
+  for (const auto& [set, warning] :
+       {std::pair{"run.t_end=0.001", "shorter than one time step"},
+        std::pair{"run.t_end=1", "ends before the analysis window"},
+        std::pair{"wall.diameter=1.5 --set run.t_end=0.01", "a target of one grain"}}) {
+    ASSERT_EQ(granjet("run " + scene("jet3d.ini") + " --set jet.grains=50 --set " + set + out), 0)
+        << err_;
+    EXPECT_NE(err_.find("granjet: warning: "), std::string::npos) << err_;
+    EXPECT_NE(err_.find(warning), std::string::npos) << err_;
+    const nlohmann::json warnings = summary("w.json")["warnings"];
+    ASSERT_TRUE(warnings.is_array()) << set;
+    EXPECT_NE(warnings.dump().find(warning), std::string::npos) << warnings.dump();
+  }
+  ASSERT_EQ(granjet("run " + scene("binary.ini") + out), 0) << err_;
+  EXPECT_FALSE(summary("w.json").contains("warnings"));
+}
+
 // The range's end is the largest seed: the loop used to wrap around and grow without end.
 TEST_F(BadInput, ASeedRangeEndingAtTheLargestSeedRunsOnce) {
   ASSERT_EQ(granjet("run " + scene("binary.ini") +

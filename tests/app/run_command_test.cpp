@@ -61,7 +61,7 @@ TEST_F(GranjetCommand, AnalysisWindowThatNeverStartsSaysSoAndWritesNoFields) {
                     summary.string()),
             0)
       << err_;
-  EXPECT_NE(err_.find("analysis window 8..16 never started"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("ends before the analysis window 8..16 starts"), std::string::npos) << err_;
   EXPECT_TRUE(fs::exists(out));
   EXPECT_FALSE(analysis::has_analysis(out));
   EXPECT_FALSE(fs::exists(dir_ / "early.fields.xmf"));
