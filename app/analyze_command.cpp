@@ -9,6 +9,7 @@
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/field_writer.hpp"
+#include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/run_analysis.hpp"
 #include "app/ensemble_output.hpp"
@@ -66,6 +67,25 @@ analysis::RunResult analyse_frames(const std::filesystem::path& file,
   return run.finish();
 }
 
+// The analysis goes into a copy of the file, renamed over it when complete: a file that HDF5
+// can read but not extend (damaged), or a crash half-way, leaves the original as it was.
+std::filesystem::path store_into_copy(const std::filesystem::path& file,
+                                      const analysis::EnsembleResult& result) {
+  std::filesystem::path copy = file;
+  copy += ".partial";
+  const analysis::FileLock lock(copy);
+  std::filesystem::copy_file(file, copy, std::filesystem::copy_options::overwrite_existing);
+  try {
+    const std::filesystem::path xmf = analysis::store_ensemble(copy, result, file);
+    std::filesystem::rename(copy, file);
+    return xmf;
+  } catch (const std::runtime_error& e) {
+    std::filesystem::remove(copy);
+    throw InputError(file.string(), std::string("cannot take its analysis (") + e.what() +
+                                        "); the file is left as it was");
+  }
+}
+
 // A run's file: its own frames. An ensemble's file (no frames): each member run's frames,
 // combined over the seeds as `granjet run --seeds` does; the members are left as they are.
 template <int D>
@@ -85,7 +105,7 @@ int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
     frames += used;
   }
   const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  const std::filesystem::path xmf = analysis::store_ensemble(options.file, result);
+  const std::filesystem::path xmf = store_into_copy(options.file, result);
   out << "analysed " << frames << " frames of " << runs.size() << " run(s); wrote /fields and "
       << "/analysis into " << options.file.string() << " and " << xmf.string() << "\n";
   if (!options.summary.empty())
