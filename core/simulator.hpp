@@ -3,10 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/particles.hpp"
+#include "core/state_archive.hpp"
 
 namespace granjet {
 
@@ -31,6 +34,16 @@ struct SimStats {
   std::int64_t collisions = 0;
   std::int64_t cell_crossings = 0;
 };
+
+inline void put_stats(StateArchive& a, const std::string& name, const SimStats& s) {
+  a.put_integers(name, {s.steps, s.particle_steps, s.contacts, s.neighbour_rebuilds, s.removed,
+                        s.events, s.collisions, s.cell_crossings});
+}
+inline SimStats get_stats(const StateArchive& a, const std::string& name) {
+  const std::vector<std::int64_t>& v = a.integers(name);
+  if (v.size() != 8) throw std::runtime_error("checkpoint entry " + name + " is not 8 counts");
+  return {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]};
+}
 
 struct EnergyBalance {
   double kinetic = 0.0;      // translational, free and wall grains
@@ -60,6 +73,13 @@ class Simulator {
   virtual void record_transfers(bool on) { (void)on; }
   virtual SimStats stats() const = 0;
   virtual EnergyBalance energy() const = 0;
+  // Checkpoint: brings the state into a form that a simulator built anew from the same scene
+  // takes over exactly (soft DEM: a neighbour-list rebuild; event-driven: every grain at one
+  // time and the calendar predicted anew), then stores it. The run goes on bit-identically
+  // in this simulator or in one that restore()d the archive, which must come from a simulator
+  // of the same scene and backend.
+  virtual void checkpoint(StateArchive& out) = 0;
+  virtual void restore(const StateArchive& in) = 0;
 };
 
 }  // namespace granjet

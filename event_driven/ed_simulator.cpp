@@ -79,28 +79,111 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
     f.x = grains_.position()[i];
     f.v = fixed(i) ? Vec<D>::Zero() : grains_.velocity()[i];
     f.radius = grains_.radius()[i];
-    cells_.insert(i, f.x);
     free_grains += !fixed(i);
   }
-  next_collision_.resize(n);
-  runner_up_.resize(n);
-  next_exit_.resize(n);
-  events_of_.assign(n + 1, 0);
   last_partner_.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) last_partner_[i] = i;
   last_collision_.assign(n, -kNever);
   alive_.assign(n, 1);
   shift_every_ = kShiftEventsPerGrain * std::max<std::int64_t>(1, free_grains);
+  predict_anew();
+  take_snapshot();
+  initial_energy_ = energy().total() + removed_energy_;  // removed at the start counts
+  if (verify_ == Verification::kOn) check_no_overlaps();
+}
+
+template <int D>
+void EdSimulator<D>::predict_anew() {
+  const std::size_t n = flight_.size();
+  cells_ = make_cells<D>(scene_, grains_);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (alive_[i]) cells_.insert(i, flight_[i].x);
+  calendar_ = Calendar(n);
+  collapse_ = CollapseDetector(n);
   collapse_.set_flight_time(flight_time());
+  next_collision_.assign(n, Prediction{});
+  runner_up_.assign(n, Prediction{});
+  next_exit_.assign(n, Crossing{});
+  events_of_.assign(n + 1, 0);
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (fixed(i)) continue;
+    if (fixed(i) || !alive_[i]) continue;
     predict_all(i);
     predict_exit(i);
     schedule(i);
   }
+}
+
+// Every grain streamed to the checkpoint's time, which becomes the clock's zero, then every
+// event predicted anew: a simulator of the same scene that takes the flights does the same.
+template <int D>
+void EdSimulator<D>::checkpoint(StateArchive& a) {
+  clock_ = time_ - origin_;  // no event lies between the last one and time_
+  shift_time_origin();
+  predict_anew();
+  std::vector<Vec<D>> x, v;
+  for (const Flight<D>& f : flight_) {
+    x.push_back(f.x);
+    v.push_back(f.v);
+  }
+  a.put_rows<Vec<D>>("ed/x", x);
+  a.put_rows<Vec<D>>("ed/v", v);
+  a.put_values<std::uint8_t>("ed/alive", alive_);
+  a.put_values<std::uint32_t>("ed/last_partner", last_partner_);
+  a.put_rows<double>("ed/last_collision", last_collision_);  // the tc_model's clocks
+  a.put("ed/origin", origin_);
+  a.put("ed/initial_energy", initial_energy_);
+  a.put("ed/removed_energy", removed_energy_);
+  put_stats(a, "ed/stats", stats_);
+  std::vector<GrainId> pair;
+  std::vector<Vec<D>> at_i, at_j, impulse;
+  for (const PairImpulse<D>& t : transfers_) {
+    pair.insert(pair.end(), {t.i, t.j});
+    at_i.push_back(t.position_i);
+    at_j.push_back(t.position_j);
+    impulse.push_back(t.impulse);
+  }
+  a.put_values<GrainId>("ed/transfers/pair", pair);
+  a.put_rows<Vec<D>>("ed/transfers/position_i", at_i);
+  a.put_rows<Vec<D>>("ed/transfers/position_j", at_j);
+  a.put_rows<Vec<D>>("ed/transfers/impulse", impulse);
+}
+
+template <int D>
+void EdSimulator<D>::restore(const StateArchive& a) {
+  const std::size_t n = flight_.size();
+  const auto x = a.rows<Vec<D>>("ed/x");
+  const auto v = a.rows<Vec<D>>("ed/v");
+  const auto alive = a.values<std::uint8_t>("ed/alive");
+  const auto last_partner = a.values<std::uint32_t>("ed/last_partner");
+  const auto last_collision = a.rows<double>("ed/last_collision");
+  if (x.size() != n || v.size() != n || alive.size() != n || last_partner.size() != n ||
+      last_collision.size() != n)
+    throw std::runtime_error("checkpoint holds " + std::to_string(x.size()) +
+                             " event-driven grains; this scene builds " + std::to_string(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    flight_[i].x = x[i];
+    flight_[i].v = v[i];
+    flight_[i].t = 0.0;
+  }
+  alive_ = alive;
+  last_partner_ = last_partner;
+  last_collision_ = last_collision;
+  origin_ = time_ = a.real("ed/origin");
+  clock_ = 0.0;
+  events_since_shift_ = 0;
+  initial_energy_ = a.real("ed/initial_energy");
+  removed_energy_ = a.real("ed/removed_energy");
+  stats_ = get_stats(a, "ed/stats");
+  const auto pair = a.values<GrainId>("ed/transfers/pair");
+  const auto at_i = a.rows<Vec<D>>("ed/transfers/position_i");
+  const auto at_j = a.rows<Vec<D>>("ed/transfers/position_j");
+  const auto impulse = a.rows<Vec<D>>("ed/transfers/impulse");
+  transfers_.clear();
+  for (std::size_t k = 0; k < impulse.size(); ++k)
+    transfers_.push_back({pair.at(2 * k), pair.at(2 * k + 1), at_i.at(k), at_j.at(k), impulse[k]});
+  predict_anew();
+  snapshot_removed_ = -1;  // other grains than the constructor's snapshot
   take_snapshot();
-  initial_energy_ = energy().total() + removed_energy_;  // removed at the start counts
-  if (verify_ == Verification::kOn) check_no_overlaps();
 }
 
 template <int D>

@@ -56,6 +56,8 @@ class EdSimulator final : public Simulator<D> {
   void record_transfers(bool on) override;
   SimStats stats() const override { return stats_; }
   EnergyBalance energy() const override;
+  void checkpoint(StateArchive& out) override;
+  void restore(const StateArchive& in) override;
 
  private:
   // A collision found by the grain's scans since its velocity last changed.
@@ -70,6 +72,10 @@ class EdSimulator final : public Simulator<D> {
     int direction = 0;
   };
 
+  // Bins the live grains into fresh cells and predicts every event anew, with a fresh calendar
+  // and collapse watch, from the flights alone: what the constructor does, and what a
+  // checkpoint does in the run that writes it and the run that resumes from it.
+  void predict_anew();
   void process(std::uint32_t i);
   void collide(std::uint32_t i, std::uint32_t j);
   void hit_plate(std::uint32_t i);

@@ -329,16 +329,8 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
   if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, keep);
 }
 
-// Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
-// tangential history over by grain-id pair.
 template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
-  check_finite();
-  // The tangential history of touching pairs, by grain ids (indices change below).
-  struct History {
-    GrainId a, b;
-    Vec<D> shear;
-  };
+auto DemSimulator<D, kFriction, kMono, Space>::histories() const -> std::vector<History> {
   std::vector<History> history;
   if constexpr (kFriction)
     for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
@@ -346,6 +338,14 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
       history.push_back({p_.id()[pair_row_[k]], p_.id()[pairs_.partner[k]],
                          contact_shear_.template get<Vec<D>>(c)});
     }
+  return history;
+}
+
+// Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
+// tangential history over by grain-id pair.
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History>& history) {
+  check_finite();
   remove_escaped();
   double max_radius = 0.0;
   for (double r : p_.radius()) max_radius = std::max(max_radius, r);
@@ -399,8 +399,76 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild() {
     contact_shear_.set(c, carried[c].second);
   }
   travel_ = 0.0;
+  needs_rebuild_ = false;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
   ++stats_.neighbour_rebuilds;
+}
+
+// A rebuild first: it re-sorts the grains by cell and lists the pairs anew from positions
+// alone, so a simulator that takes the stored grains (already in that order) and rebuilds gets
+// the same order, list and carried histories, and every later sum runs in the same order.
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::checkpoint(StateArchive& a) {
+  rebuild();
+  put_particles(a, "dem/grains", p_);
+  a.put_rows<Vec<D>>("dem/force_prev", force_prev_);
+  a.put_rows<Spin<D>>("dem/torque_prev", torque_prev_);
+  a.put_rows<Vec<D>>("dem/plate_shear", plate_shear_);
+  std::vector<GrainId> pair;
+  std::vector<Vec<D>> shear;
+  for (const History& h : histories()) {
+    pair.insert(pair.end(), {h.a, h.b});
+    shear.push_back(h.shear);
+  }
+  a.put_values<GrainId>("dem/history/pair", pair);
+  a.put_rows<Vec<D>>("dem/history/shear", shear);
+  if (tethered_) wall_.save(a, "dem/tethers");
+  a.put("dem/step", step_);
+  a.put("dem/first_step", std::int64_t{first_step_});
+  a.put("dem/removed_energy", removed_energy_);
+  a.put("dem/initial_energy", initial_energy_);
+  a.put("dem/last_collect_time", last_collect_time_);
+  put_stats(a, "dem/stats", stats_);
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::restore(const StateArchive& a) {
+  p_ = get_particles<D>(a, "dem/grains");
+  const std::size_t n = p_.size();
+  force_prev_ = a.rows<Vec<D>>("dem/force_prev");
+  torque_prev_ = a.rows<Spin<D>>("dem/torque_prev");
+  plate_shear_ = a.rows<Vec<D>>("dem/plate_shear");
+  if (force_prev_.size() != n || torque_prev_.size() != n ||
+      (!plate_shear_.empty() && plate_shear_.size() != n))
+    throw std::runtime_error("checkpoint entries under dem/ differ in length");
+  inv_inertia_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = p_.radius()[i];
+    inv_inertia_[i] = p_.inverse_mass()[i] / (Dim<D>::kInertiaFactor * r * r);
+  }
+  std::fill(index_of_id_.begin(), index_of_id_.end(), kRemoved);
+  for (std::size_t i = 0; i < n; ++i) {
+    const GrainId id = p_.id()[i];
+    if (id < 0 || static_cast<std::size_t>(id) >= index_of_id_.size())
+      throw std::runtime_error("checkpoint holds grain " + std::to_string(id) +
+                               ", which this scene does not build");
+    index_of_id_[id] = static_cast<std::uint32_t>(i);
+  }
+  const auto pair = a.values<GrainId>("dem/history/pair");
+  const auto shear = a.rows<Vec<D>>("dem/history/shear");
+  if (pair.size() != 2 * shear.size())
+    throw std::runtime_error("checkpoint entries under dem/history differ in length");
+  std::vector<History> history;
+  for (std::size_t c = 0; c < shear.size(); ++c)
+    history.push_back({pair[2 * c], pair[2 * c + 1], shear[c]});
+  if (tethered_) wall_.restore(a, "dem/tethers");
+  rebuild(history);
+  step_ = a.integer("dem/step");
+  first_step_ = a.integer("dem/first_step") != 0;
+  removed_energy_ = a.real("dem/removed_energy");
+  initial_energy_ = a.real("dem/initial_energy");
+  last_collect_time_ = a.real("dem/last_collect_time");
+  stats_ = get_stats(a, "dem/stats");
 }
 
 template <int D, bool kFriction, bool kMono, class Space>

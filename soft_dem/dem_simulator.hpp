@@ -40,6 +40,8 @@ class DemSimulator final : public Simulator<D> {
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   SimStats stats() const override { return stats_; }
   EnergyBalance energy() const override;
+  void checkpoint(StateArchive& out) override;
+  void restore(const StateArchive& in) override;
 
   double dt() const { return dt_; }
   const ContactCoefficients& coefficients() const { return law_.c; }
@@ -99,7 +101,14 @@ class DemSimulator final : public Simulator<D> {
     void add(std::size_t c) const;
   };
   ContactSums contact_sums();
-  void rebuild();
+  // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
+  struct History {
+    GrainId a, b;
+    Vec<D> shear;
+  };
+  std::vector<History> histories() const;
+  void rebuild() { rebuild(histories()); }
+  void rebuild(const std::vector<History>& history);
   void remove_escaped();
   [[noreturn]] void throw_overlap(std::size_t i, std::size_t j) const;
   void check_finite() const;

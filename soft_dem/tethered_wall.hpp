@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/particles.hpp"
+#include "core/state_archive.hpp"
 
 namespace granjet::dem {
 
@@ -77,6 +80,41 @@ class TetheredWall {
   };
   double spring_ = 0.0;
   double damping_ = 0.0;
+ public:
+  // Checkpoints: the anchors and bonds by grain id.
+  void save(StateArchive& a, const std::string& prefix) const {
+    std::vector<GrainId> anchor_id, bond_ids;
+    std::vector<Vec<D>> anchor_position;
+    std::vector<double> rest;
+    for (const Anchor& anchor : anchors_) {
+      anchor_id.push_back(anchor.id);
+      anchor_position.push_back(anchor.position);
+    }
+    for (const Bond& b : bonds_) {
+      bond_ids.insert(bond_ids.end(), {b.i, b.j});
+      rest.push_back(b.rest);
+    }
+    a.put_values<GrainId>(prefix + "/anchor_id", anchor_id);
+    a.put_rows<Vec<D>>(prefix + "/anchor_position", anchor_position);
+    a.put_values<GrainId>(prefix + "/bond_ids", bond_ids);
+    a.put_rows<double>(prefix + "/bond_rest", rest);
+  }
+  void restore(const StateArchive& a, const std::string& prefix) {
+    const auto anchor_id = a.values<GrainId>(prefix + "/anchor_id");
+    const auto anchor_position = a.rows<Vec<D>>(prefix + "/anchor_position");
+    const auto bond_ids = a.values<GrainId>(prefix + "/bond_ids");
+    const auto rest = a.rows<double>(prefix + "/bond_rest");
+    if (anchor_position.size() != anchor_id.size() || bond_ids.size() != 2 * rest.size())
+      throw std::runtime_error("checkpoint entries under " + prefix + " differ in length");
+    anchors_.clear();
+    bonds_.clear();
+    for (std::size_t k = 0; k < anchor_id.size(); ++k)
+      anchors_.push_back({anchor_id[k], anchor_position[k]});
+    for (std::size_t k = 0; k < rest.size(); ++k)
+      bonds_.push_back({bond_ids[2 * k], bond_ids[2 * k + 1], rest[k]});
+  }
+
+ private:
   std::vector<Anchor> anchors_;
   std::vector<Bond> bonds_;
 };

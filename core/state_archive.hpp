@@ -1,0 +1,147 @@
+// A run's state as named flat arrays of numbers: what a checkpoint stores (the app writes it
+// into the run's .partial file) and a resumed run takes back. Core and the backends know no file
+// format. Names are paths ("dem/force_prev"); a vector per grain is stored flat, D numbers each.
+// Every number goes in and out unchanged, bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/particles.hpp"
+
+namespace granjet {
+
+class StateArchive {
+ public:
+  using Reals = std::map<std::string, std::vector<double>>;
+  using Integers = std::map<std::string, std::vector<std::int64_t>>;
+
+  void put_reals(const std::string& name, std::vector<double> values) {
+    reals_[name] = std::move(values);
+  }
+  void put_integers(const std::string& name, std::vector<std::int64_t> values) {
+    integers_[name] = std::move(values);
+  }
+  void put(const std::string& name, double value) { put_reals(name, {value}); }
+  void put(const std::string& name, std::int64_t value) { put_integers(name, {value}); }
+
+  // Rows of doubles: Eigen fixed-size vectors, or double itself (a 2D spin).
+  template <class Row>
+  void put_rows(const std::string& name, std::span<const Row> rows) {
+    std::vector<double> flat;
+    flat.reserve(rows.size() * width<Row>());
+    for (const Row& row : rows) {
+      if constexpr (std::is_arithmetic_v<Row>)
+        flat.push_back(row);
+      else
+        for (int d = 0; d < width<Row>(); ++d) flat.push_back(row[d]);
+    }
+    put_reals(name, std::move(flat));
+  }
+  // Integers of any width (ids, indices, enums).
+  template <class T>
+  void put_values(const std::string& name, std::span<const T> values) {
+    std::vector<std::int64_t> wide;
+    wide.reserve(values.size());
+    for (const T& v : values) wide.push_back(static_cast<std::int64_t>(v));
+    put_integers(name, std::move(wide));
+  }
+
+  const std::vector<double>& reals(const std::string& name) const { return find(reals_, name); }
+  const std::vector<std::int64_t>& integers(const std::string& name) const {
+    return find(integers_, name);
+  }
+  double real(const std::string& name) const { return single(reals(name), name); }
+  std::int64_t integer(const std::string& name) const { return single(integers(name), name); }
+  bool contains(const std::string& name) const {
+    return reals_.contains(name) || integers_.contains(name);
+  }
+
+  template <class Row>
+  std::vector<Row> rows(const std::string& name) const {
+    const std::vector<double>& flat = reals(name);
+    constexpr std::size_t w = width<Row>();
+    if (flat.size() % w != 0)
+      throw std::runtime_error("checkpoint entry " + name + " is not a whole number of rows");
+    std::vector<Row> out(flat.size() / w);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if constexpr (std::is_arithmetic_v<Row>)
+        out[k] = flat[k];
+      else
+        for (std::size_t d = 0; d < w; ++d) out[k][d] = flat[k * w + d];
+    }
+    return out;
+  }
+  template <class T>
+  std::vector<T> values(const std::string& name) const {
+    std::vector<T> out;
+    for (std::int64_t v : integers(name)) out.push_back(static_cast<T>(v));
+    return out;
+  }
+
+  const Reals& all_reals() const { return reals_; }
+  const Integers& all_integers() const { return integers_; }
+
+ private:
+  template <class Row>
+  static constexpr int width() {
+    if constexpr (std::is_arithmetic_v<Row>)
+      return 1;
+    else
+      return Row::SizeAtCompileTime;
+  }
+  template <class Map>
+  static const typename Map::mapped_type& find(const Map& map, const std::string& name) {
+    const auto it = map.find(name);
+    if (it == map.end()) throw std::runtime_error("checkpoint has no entry " + name);
+    return it->second;
+  }
+  template <class T>
+  static T single(const std::vector<T>& values, const std::string& name) {
+    if (values.size() != 1) throw std::runtime_error("checkpoint entry " + name + " is not one number");
+    return values.front();
+  }
+
+  Reals reals_;
+  Integers integers_;
+};
+
+// Every column of a grain store, in its current order, under `prefix` ("dem/grains").
+template <int D>
+void put_particles(StateArchive& a, const std::string& prefix, const Particles<D>& p) {
+  a.put_values<GrainId>(prefix + "/id", p.id());
+  a.put_values<GrainKind>(prefix + "/kind", p.kind());
+  a.put_rows<Vec<D>>(prefix + "/position", p.position());
+  a.put_rows<Vec<D>>(prefix + "/velocity", p.velocity());
+  a.put_rows<Spin<D>>(prefix + "/spin", p.spin());
+  a.put_rows<double>(prefix + "/radius", p.radius());
+  a.put_rows<double>(prefix + "/mass", p.mass());
+}
+
+template <int D>
+Particles<D> get_particles(const StateArchive& a, const std::string& prefix) {
+  const auto id = a.values<GrainId>(prefix + "/id");
+  const auto kind = a.values<GrainKind>(prefix + "/kind");
+  const auto position = a.rows<Vec<D>>(prefix + "/position");
+  const auto velocity = a.rows<Vec<D>>(prefix + "/velocity");
+  const auto spin = a.rows<Spin<D>>(prefix + "/spin");
+  const auto radius = a.rows<double>(prefix + "/radius");
+  const auto mass = a.rows<double>(prefix + "/mass");
+  const std::size_t n = id.size();
+  if (kind.size() != n || position.size() != n || velocity.size() != n || spin.size() != n ||
+      radius.size() != n || mass.size() != n)
+    throw std::runtime_error("checkpoint entries under " + prefix + " differ in length");
+  Particles<D> p;
+  for (std::size_t i = 0; i < n; ++i) {
+    p.add(id[i], kind[i], position[i], velocity[i], radius[i], mass[i]);
+    p.spin()[i] = spin[i];
+  }
+  return p;
+}
+
+}  // namespace granjet
