@@ -45,6 +45,22 @@ class BinaryCollisionTracker {
   double restitution() const { return -departure_ / approach_; }
   double contact_time() const { return end_ - onset_; }
 
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v("have_previous", have_previous_);
+    v("previous_t", previous_t_);
+    v("previous_gap", previous_gap_);
+    v("previous_n", previous_n_);
+    v("previous_v12", previous_v12_);
+    v("touched", touched_);
+    v("parted", parted_);
+    v("onset", onset_);
+    v("end", end_);
+    v("separation_normal", separation_normal_);
+    v("approach", approach_);
+    v("departure", departure_);
+  }
+
  private:
   static std::size_t index(const Particles<D>& p, GrainId id) { return p.id()[0] == id ? 0 : 1; }
   double crossing(double t, double gap) const {

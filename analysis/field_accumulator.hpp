@@ -68,6 +68,38 @@ class FieldAccumulator {
   Table fields(const FieldOptions& options) const;
   const VelocityDistribution<D>& velocity_distribution() const { return vdf_; }
 
+  // Checkpoints: the sums so far (the bins themselves come from the configuration).
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v.each("bins", bins_, [](auto& b, BinSums& s) {
+      b("count", s.count);
+      b("volume", s.volume);
+      b("mass", s.mass);
+      b("momentum", s.momentum);
+      b("second", s.second);
+      b("momentum_xyz", s.momentum_xyz);
+      b("second_xyz", s.second_xyz);
+      b("contact", s.contact);
+      b("contact_xyz", s.contact_xyz);
+      b("contact_wall", s.contact_wall);
+      b("contact_normal", s.contact_normal);
+      b("fabric", s.fabric);
+      b("segments", s.segments);
+    });
+    v.each("half_cells", half_cells_, [](auto& c, HalfCellSums<D>& h) {
+      c("mass", h.mass);
+      c("momentum", h.momentum);
+      c("lateral", h.lateral);
+      c("height", h.height);
+    });
+    auto vdf = v.nested("vdf");
+    vdf_.visit_state(vdf);
+    v("samples", samples_);
+    v("transfer_samples", transfer_samples_);
+    v("transfer_time", transfer_time_);
+    v("wall", wall_);
+  }
+
  private:
   struct BinSums {
     double count = 0.0;   // grain centres, summed over snapshots

@@ -23,6 +23,15 @@ class LineFit {
   }
   double intercept() const { return (sum_y_ - slope() * sum_x_) / static_cast<double>(n_); }
 
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v("n", n_);
+    v("sum_x", sum_x_);
+    v("sum_y", sum_y_);
+    v("sum_xx", sum_xx_);
+    v("sum_xy", sum_xy_);
+  }
+
  private:
   std::int64_t n_ = 0;
   double sum_x_ = 0.0, sum_y_ = 0.0, sum_xx_ = 0.0, sum_xy_ = 0.0;

@@ -94,6 +94,18 @@ class RunAnalysis {
   const FieldAccumulator<D>& field_accumulator() const { return fields_; }
   const ScatteringMeasurement<D>& scattering() const { return scattering_; }
 
+  // Checkpoints: what the samples so far have summed and when the next is due.
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    auto fields = v.nested("fields");
+    fields_.visit_state(fields);
+    auto scattering = v.nested("scattering");
+    scattering_.visit_state(scattering);
+    v("next", next_);
+    v("open", open_);
+    v("last_window_time", last_window_time_);
+  }
+
  private:
   void take(double time, const Particles<D>& particles, std::span<const PairImpulse<D>> transfers,
             bool transfers_known);

@@ -45,6 +45,14 @@ class ScatteringMeasurement {
   // dN/dphi over `bins` equal intervals of [0, 2 pi), divided by its mean (v0).
   std::vector<double> azimuthal_distribution(int bins) const;
 
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v("seen", seen_);
+    v("velocity", velocity_);
+    v("time", time_);
+    v("azimuth", azimuth_);
+  }
+
  private:
   double radius_;
   double reference_;

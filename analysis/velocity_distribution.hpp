@@ -43,6 +43,12 @@ class VelocityDistribution {
   // inside.
   std::vector<double> density(int component, std::span<const double> edges) const;
 
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v("bin", bin_);
+    v("velocity", velocity_);
+  }
+
  private:
   struct BinMoments {
     std::vector<double> mean, sd;

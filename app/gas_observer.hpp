@@ -36,6 +36,21 @@ class GasObserver {
   double cooling_rate(double initial_temperature) const;
   std::int64_t samples() const { return samples_; }
 
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v("next", next_);
+    v("started", started_);
+    v("started_at", started_at_);
+    v("last_time", last_time_);
+    v("virial", virial_);
+    v("samples", samples_);
+    v("sum_t", sum_t_);
+    auto per_collision = v.nested("per_collision");
+    per_collision_.visit_state(per_collision);
+    auto in_time = v.nested("in_time");
+    in_time_.visit_state(in_time);
+  }
+
  private:
   double start_;
   double interval_;

@@ -27,6 +27,11 @@ class InlineAnalysis {
   // Wall time spent in observe(), to report what the analysis costs the run.
   double seconds() const { return seconds_; }
 
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    analysis_.visit_state(v);
+  }
+
  private:
   analysis::RunAnalysis<D> analysis_;
   std::vector<PairImpulse<D>> transfers_;

@@ -39,7 +39,7 @@ class StateArchive {
       if constexpr (std::is_arithmetic_v<Row>)
         flat.push_back(row);
       else
-        for (int d = 0; d < width<Row>(); ++d) flat.push_back(row[d]);
+        for (int d = 0; d < width<Row>(); ++d) flat.push_back(row.data()[d]);
     }
     put_reals(name, std::move(flat));
   }
@@ -73,7 +73,7 @@ class StateArchive {
       if constexpr (std::is_arithmetic_v<Row>)
         out[k] = flat[k];
       else
-        for (std::size_t d = 0; d < w; ++d) out[k][d] = flat[k * w + d];
+        for (std::size_t d = 0; d < w; ++d) out[k].data()[d] = flat[k * w + d];
     }
     return out;
   }
@@ -109,6 +109,107 @@ class StateArchive {
 
   Reals reals_;
   Integers integers_;
+};
+
+namespace detail {
+template <class T>
+struct IsVector : std::false_type {};
+template <class T, class A>
+struct IsVector<std::vector<T, A>> : std::true_type {};
+}  // namespace detail
+
+// One list of members serves both directions: a class with run state lists it once,
+//   template <class Visitor> void visit_state(Visitor& v) { v("samples", samples_); ... }
+// and StateWriter stores what StateReader gives back. Members are numbers, bools, enums,
+// fixed-size Eigen vectors and matrices, and std::vectors of those; v.each() visits a vector
+// of structs item by item, v.nested() a member object under its own name.
+class StateWriter {
+ public:
+  StateWriter(StateArchive& archive, std::string prefix)
+      : archive_(archive), prefix_(std::move(prefix)) {}
+
+  template <class T>
+  void operator()(const std::string& name, const T& value) {
+    const std::string key = prefix_ + "/" + name;
+    if constexpr (detail::IsVector<T>::value) {
+      using E = typename T::value_type;
+      if constexpr (std::is_arithmetic_v<E> && !std::is_floating_point_v<E>) {
+        archive_.put_values<std::int64_t>(key, std::vector<std::int64_t>(value.begin(), value.end()));
+      } else if constexpr (std::is_enum_v<E>) {
+        archive_.put_values<E>(key, std::span<const E>(value));
+      } else {
+        archive_.put_rows<E>(key, std::span<const E>(value));
+      }
+    } else if constexpr (std::is_floating_point_v<T>) {
+      archive_.put(key, static_cast<double>(value));
+    } else if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+      archive_.put(key, static_cast<std::int64_t>(value));
+    } else {
+      archive_.put_rows<T>(key, std::span<const T>(&value, 1));
+    }
+  }
+  template <class Item, class Visit>
+  void each(const std::string& name, std::vector<Item>& items, Visit&& visit) {
+    (*this)(name + "/size", static_cast<std::int64_t>(items.size()));
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      StateWriter item(archive_, prefix_ + "/" + name + "/" + std::to_string(k));
+      visit(item, items[k]);
+    }
+  }
+  StateWriter nested(const std::string& name) const { return {archive_, prefix_ + "/" + name}; }
+
+ private:
+  StateArchive& archive_;
+  std::string prefix_;
+};
+
+class StateReader {
+ public:
+  StateReader(const StateArchive& archive, std::string prefix)
+      : archive_(archive), prefix_(std::move(prefix)) {}
+
+  template <class T>
+  void operator()(const std::string& name, T& value) const {
+    const std::string key = prefix_ + "/" + name;
+    if constexpr (detail::IsVector<T>::value) {
+      using E = typename T::value_type;
+      if constexpr (std::is_arithmetic_v<E> && !std::is_floating_point_v<E>) {
+        const std::vector<std::int64_t>& wide = archive_.integers(key);
+        value.assign(wide.begin(), wide.end());
+      } else if constexpr (std::is_enum_v<E>) {
+        value = archive_.values<E>(key);
+      } else {
+        value = archive_.rows<E>(key);
+      }
+    } else if constexpr (std::is_floating_point_v<T>) {
+      value = static_cast<T>(archive_.real(key));
+    } else if constexpr (std::is_same_v<T, bool>) {
+      value = archive_.integer(key) != 0;
+    } else if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+      value = static_cast<T>(archive_.integer(key));
+    } else {
+      const std::vector<T> one = archive_.rows<T>(key);
+      if (one.size() != 1) throw std::runtime_error("checkpoint entry " + key + " is not one value");
+      value = one.front();
+    }
+  }
+  // The items of a vector whose length the reader's own configuration fixed must match.
+  template <class Item, class Visit>
+  void each(const std::string& name, std::vector<Item>& items, Visit&& visit) const {
+    const std::int64_t size = archive_.integer(prefix_ + "/" + name + "/size");
+    if (size != static_cast<std::int64_t>(items.size()))
+      throw std::runtime_error("checkpoint holds " + std::to_string(size) + " " + prefix_ + "/" +
+                               name + "; this run has " + std::to_string(items.size()));
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      StateReader item(archive_, prefix_ + "/" + name + "/" + std::to_string(k));
+      visit(item, items[k]);
+    }
+  }
+  StateReader nested(const std::string& name) const { return {archive_, prefix_ + "/" + name}; }
+
+ private:
+  const StateArchive& archive_;
+  std::string prefix_;
 };
 
 // Every column of a grain store, in its current order, under `prefix` ("dem/grains").

@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "analysis/analysis_json.hpp"
 #include "app/backend_factory.hpp"
+#include "app/gas_observer.hpp"
+#include "app/inline_analysis.hpp"
 #include "app/scene_file.hpp"
 
 namespace granjet {
@@ -126,6 +129,84 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"ed_gas3d_periodic", "gas3d.ini", "event_driven", {}},
         Case{"ed_hcs2d_periodic", "hcs2d.ini", "event_driven", {}}),
     [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
+
+// The inline analysis of a run as the app drives it, from t = 0 (or a checkpoint) to t_end.
+template <int D>
+void drive(Simulator<D>& sim, InlineAnalysis<D>& fields, double t_end) {
+  while (sim.time() < t_end - 1e-9) {
+    sim.advance_to(std::min(t_end, std::max(fields.next_time(), sim.time() + 1e-3)));
+    fields.observe(sim);
+  }
+}
+
+// The analysis' sums go into the checkpoint with the simulator's state: the resumed run's
+// fields, scattering and velocity distributions are the straight run's, every digit.
+template <int D>
+void check_analysis(const std::string& backend, const Scene& scene) {
+  auto straight = make_simulator<D>(backend, scene);
+  InlineAnalysis<D> straight_fields(scene, *straight);
+  drive(*straight, straight_fields, 2.0);
+  ASSERT_TRUE(straight_fields.window_sampled());  // the checkpoint falls inside the window
+  StateArchive archive;
+  straight->checkpoint(archive);
+  StateWriter writer(archive, "analysis");
+  straight_fields.visit_state(writer);
+  drive(*straight, straight_fields, scene.run.t_end);
+  const std::vector<analysis::RunResult> expected{straight_fields.finish()};
+
+  auto resumed = make_simulator<D>(backend, scene);
+  InlineAnalysis<D> resumed_fields(scene, *resumed);
+  resumed->restore(archive);
+  StateReader reader(archive, "analysis");
+  resumed_fields.visit_state(reader);
+  drive(*resumed, resumed_fields, scene.run.t_end);
+  const std::vector<analysis::RunResult> got{resumed_fields.finish()};
+  EXPECT_EQ(analysis::to_json(analysis::combine_runs(got, D)).dump(),
+            analysis::to_json(analysis::combine_runs(expected, D)).dump())
+      << backend;
+}
+
+TEST(CheckpointAnalysis, ResumedInlineAnalysisIsBitIdentical) {
+  const std::vector<std::string> small = {"jet.grains=800", "run.t_end=5",
+                                          "analysis.window_start=1", "analysis.window_end=5",
+                                          "analysis.sample_interval=0.25"};
+  for (const char* backend : {"soft_dem", "event_driven"}) {
+    check_analysis<3>(backend, load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini", small));
+    check_analysis<2>(backend, load_scene(std::string(GRANJET_SCENES_DIR) + "/jet2d.ini", small));
+  }
+}
+
+// The gas observer's sums (temperature, virial, the cooling fits) likewise.
+TEST(CheckpointAnalysis, ResumedGasObserverIsBitIdentical) {
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/hcs3d.ini",
+                                 {"gas.grains=500", "run.t_end=4", "gas.equilibration=1"});
+  const auto run = [&](Simulator<3>& sim, GasObserver<3>& gas, double t_end) {
+    while (sim.time() < t_end - 1e-9) {
+      sim.advance_to(std::min(t_end, std::max(gas.next_time(), sim.time() + 1e-3)));
+      gas.observe(sim);
+    }
+  };
+  auto straight = make_simulator<3>("event_driven", scene);
+  GasObserver<3> straight_gas(scene, *straight);
+  run(*straight, straight_gas, 2.0);
+  StateArchive archive;
+  straight->checkpoint(archive);
+  StateWriter writer(archive, "gas");
+  straight_gas.visit_state(writer);
+  run(*straight, straight_gas, 4.0);
+
+  auto resumed = make_simulator<3>("event_driven", scene);
+  GasObserver<3> resumed_gas(scene, *resumed);
+  resumed->restore(archive);
+  StateReader reader(archive, "gas");
+  resumed_gas.visit_state(reader);
+  run(*resumed, resumed_gas, 4.0);
+  ASSERT_GT(straight_gas.samples(), 10);
+  EXPECT_EQ(resumed_gas.samples(), straight_gas.samples());
+  EXPECT_EQ(resumed_gas.temperature(), straight_gas.temperature());
+  EXPECT_EQ(resumed_gas.cooling_per_collision(), straight_gas.cooling_per_collision());
+  EXPECT_EQ(resumed_gas.cooling_rate(1.0), straight_gas.cooling_rate(1.0));
+}
 
 }  // namespace
 }  // namespace granjet
