@@ -179,7 +179,8 @@ TEST(CheckpointAnalysis, ResumedInlineAnalysisIsBitIdentical) {
 // The gas observer's sums (temperature, virial, the cooling fits) likewise.
 TEST(CheckpointAnalysis, ResumedGasObserverIsBitIdentical) {
   const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/hcs3d.ini",
-                                 {"gas.grains=500", "run.t_end=4", "gas.equilibration=1"});
+                                 {"gas.grains=500", "run.t_end=4", "gas.equilibration=1",
+                                  "gas.sample_interval=0.1"});
   const auto run = [&](Simulator<3>& sim, GasObserver<3>& gas, double t_end) {
     while (sim.time() < t_end - 1e-9) {
       sim.advance_to(std::min(t_end, std::max(gas.next_time(), sim.time() + 1e-3)));
