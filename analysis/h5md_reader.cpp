@@ -17,6 +17,7 @@ namespace {
 constexpr const char* kParameters = "/parameters/granjet";
 constexpr const char* kScene = "/parameters/granjet/scene";
 constexpr const char* kMembers = "/parameters/granjet/members";
+constexpr const char* kCheckpointTime = "/checkpoint/app/time";  // run_command's checkpoints
 constexpr const char* kFrameStep = "/particles/all/position/step";
 constexpr const char* kFrameTime = "/particles/all/position/time";
 constexpr const char* kFrameGrains = "/observables/frame_grains/value";
@@ -73,7 +74,58 @@ class H5mdInput {
                         [&](char* buffer) { return H5Aread(attribute.get(), type.get(), buffer); });
   }
 
-  bool exists(const char* name) const { return H5Lexists(file_.get(), name, H5P_DEFAULT) > 0; }
+  // Whether the link exists, with each group on the way (H5Lexists fails on a missing one).
+  bool exists(const std::string& name) const {
+    for (std::size_t slash = name.find('/', 1);; slash = name.find('/', slash + 1)) {
+      if (H5Lexists(file_.get(), name.substr(0, slash).c_str(), H5P_DEFAULT) <= 0) return false;
+      if (slash == std::string::npos) return true;
+    }
+  }
+
+
+  // Every dataset under /checkpoint, by its path below it.
+  StateArchive checkpoint() const {
+    struct Visit {
+      const H5mdInput* in;
+      std::vector<std::string> names;
+    } visit{this, {}};
+    const H5Handle group =
+        ctx_.own(H5Gopen2(file_.get(), "/checkpoint", H5P_DEFAULT), H5Gclose, "open", "/checkpoint");
+    ctx_.check(H5Ovisit(group.get(), H5_INDEX_NAME, H5_ITER_INC,
+                        [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+                          if (info->type == H5O_TYPE_DATASET)
+                            static_cast<Visit*>(data)->names.push_back(name);
+                          return 0;
+                        },
+                        &visit),
+               "list", "/checkpoint");
+    StateArchive archive;
+    for (const std::string& name : visit.names) {
+      const std::string path = "/checkpoint/" + name;
+      const H5Handle set = ctx_.own(H5Dopen2(file_.get(), path.c_str(), H5P_DEFAULT), H5Dclose,
+                                    "open", path);
+      const H5Handle type = ctx_.own(H5Dget_type(set.get()), H5Tclose, "query", path);
+      const H5Handle space = ctx_.own(H5Dget_space(set.get()), H5Sclose, "query", path);
+      const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+      if (n < 0) fail("count", path);
+      if (H5Tget_class(type.get()) == H5T_FLOAT) {
+        std::vector<double> values(n);
+        if (n > 0)
+          ctx_.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                             values.data()),
+                     "read", path);
+        archive.put_reals(name, std::move(values));
+      } else {
+        std::vector<std::int64_t> values(n);
+        if (n > 0)
+          ctx_.check(H5Dread(set.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                             values.data()),
+                     "read", path);
+        archive.put_integers(name, std::move(values));
+      }
+    }
+    return archive;
+  }
 
   std::string string_dataset(const char* name) const {
     const OpenDataset scalar = open_dataset(name, 0);
@@ -165,6 +217,10 @@ FileSummary read_summary(const std::filesystem::path& file) {
     throw InputError(file.string(), "stores dimension " + std::to_string(summary.dimension) +
                                         "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
+  if (in.exists(kCheckpointTime)) {
+    summary.checkpoint = true;
+    summary.checkpoint_time = in.element<double>(kCheckpointTime, 0);
+  }
   if (in.exists(kMembers)) {
     std::istringstream lines(in.string_dataset(kMembers));
     for (std::string line; std::getline(lines, line);)
@@ -181,6 +237,14 @@ FileSummary read_summary(const std::filesystem::path& file) {
   return summary;
 }
 
+StateArchive read_checkpoint(const std::filesystem::path& file) {
+  const H5mdInput in(file);
+  if (!in.exists("/checkpoint"))
+    throw InputError(file.string(), "holds no checkpoint (a run older than its first "
+                                    "run.checkpoint_interval, or not a granjet run)");
+  return in.checkpoint();
+}
+
 void print_summary(const FileSummary& summary, std::ostream& out) {
   out << summary.creator << ' ' << summary.creator_version << ", " << summary.backend
       << " backend, " << summary.dimension << "D (H5MD " << summary.h5md_version[0] << '.'
@@ -194,6 +258,8 @@ void print_summary(const FileSummary& summary, std::ostream& out) {
   out << "\nobservables: " << summary.observable_rows << " rows\n"
       << "scene: " << std::count(summary.scene_ini.begin(), summary.scene_ini.end(), '\n')
       << " lines of INI stored\n";
+  if (summary.checkpoint)
+    out << "checkpoint at t = " << summary.checkpoint_time << ": granjet resume continues from it\n";
   if (!summary.members.empty()) {
     out << "ensemble of " << summary.members.size() << " runs (/fields and /analysis combined):";
     for (const std::string& member : summary.members) out << ' ' << member;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/particles.hpp"
+#include "core/state_archive.hpp"
 
 namespace granjet::analysis {
 
@@ -28,10 +29,16 @@ struct FileSummary {
   std::string scene_ini;
   // An ensemble file's member runs, relative to its directory; empty for a run's file.
   std::vector<std::string> members;
+  bool checkpoint = false;  // whether the file holds one (a .partial that can be resumed)
+  double checkpoint_time = 0.0;
 };
 
 // Throws std::runtime_error naming the file if it is not a granjet H5MD file.
 FileSummary read_summary(const std::filesystem::path& file);
+// The run state stored by the last checkpoint (H5mdWriter::write_checkpoint). Throws
+// InputError naming the file when it has none.
+StateArchive read_checkpoint(const std::filesystem::path& file);
+
 // Human-readable, a few lines.
 void print_summary(const FileSummary& summary, std::ostream& out);
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "analysis/file_lock.hpp"
+#include "analysis/h5md_reader.hpp"
 #include "analysis/hdf5_handle.hpp"
 #include "analysis/xdmf_sidecar.hpp"
 
@@ -48,6 +49,11 @@ class H5mdFile {
 
   H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dimension,
            std::size_t max_grains);
+  // Reopens a run's .partial at its checkpoint: frames and observables written after it are
+  // dropped, and the status is "running" again.
+  H5mdFile(std::filesystem::path path, int dimension);
+  void write_checkpoint(StateArchive archive);
+  void replace_scene(const std::string& scene_ini);
   void write_frame(std::int64_t step, double time, const FrameRows& rows);
   void write_observables(std::int64_t step, double time, const Observables& obs);
   std::filesystem::path complete();
@@ -81,6 +87,8 @@ class H5mdFile {
   void append(Dataset& set, hsize_t valid, hid_t type, const void* data);
   void require_open() const;
   void close();
+  Dataset open_series(const std::string& name) const;
+  void truncate(Dataset& set, hsize_t rows);
 
   std::filesystem::path path_;
   H5Context ctx_;
@@ -184,6 +192,106 @@ void H5mdFile::write_string_dataset(const char* name, const std::string& value) 
              "write", name);
 }
 
+H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
+    : path_(std::move(path)), ctx_(partial_path(path_)), dimension_(dimension) {
+  lock_.emplace(ctx_.file());
+  const StateArchive checkpoint = read_checkpoint(ctx_.file());  // before it is opened to write
+  file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
+                   "the HDF5 file");
+  link_props_ = ctx_.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
+  ctx_.check(H5Pset_create_intermediate_group(link_props_.get(), 1), "set", "link properties");
+  const std::string all = "/particles/all/", obs = "/observables/";
+  sets_.frame_step = open_series(all + "position/step");
+  sets_.frame_time = open_series(all + "position/time");
+  sets_.position = open_series(all + "position/value");
+  sets_.velocity = open_series(all + "velocity/value");
+  sets_.radius = open_series(all + "radius/value");
+  sets_.id = open_series(all + "id/value");
+  sets_.frame_grains = open_series(obs + "frame_grains/value");
+  sets_.observable_step = open_series(obs + kEnergies[0] + "/step");
+  sets_.observable_time = open_series(obs + kEnergies[0] + "/time");
+  for (std::size_t k = 0; k < kEnergies.size(); ++k)
+    sets_.energies[k] = open_series(obs + kEnergies[k] + "/value");
+  sets_.grains = open_series(obs + "grains/value");
+  max_grains_ = sets_.position.extent.at(1);
+  const auto frames = static_cast<hsize_t>(checkpoint.integer("writer/frames"));
+  const auto rows = static_cast<hsize_t>(checkpoint.integer("writer/observable_rows"));
+  if (frames > sets_.frame_step.extent[0] || rows > sets_.observable_step.extent[0])
+    ctx_.fail("resume at", "a checkpoint that counts more frames than the file holds");
+  for (Dataset* set : {&sets_.frame_step, &sets_.frame_time, &sets_.position, &sets_.velocity,
+                       &sets_.radius, &sets_.id, &sets_.frame_grains})
+    truncate(*set, frames);
+  for (Dataset* set : {&sets_.observable_step, &sets_.observable_time, &sets_.grains})
+    truncate(*set, rows);
+  for (Dataset& set : sets_.energies) truncate(set, rows);
+  std::vector<double> time(frames);
+  std::vector<std::int64_t> grains(frames);
+  if (frames > 0) {
+    ctx_.check(H5Dread(sets_.frame_time.handle.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                       H5P_DEFAULT, time.data()),
+               "read", sets_.frame_time.name);
+    ctx_.check(H5Dread(sets_.frame_grains.handle.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL,
+                       H5P_DEFAULT, grains.data()),
+               "read", sets_.frame_grains.name);
+  }
+  for (hsize_t k = 0; k < frames; ++k)
+    frames_.push_back({time[k], static_cast<std::size_t>(grains[k])});
+  write_string_attribute("/parameters/granjet", "status", "running");
+  ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
+}
+
+void H5mdFile::replace_scene(const std::string& scene_ini) {
+  require_open();
+  const char* name = "/parameters/granjet/scene";
+  ctx_.check(H5Ldelete(file_.get(), name, H5P_DEFAULT), "replace", name);
+  write_string_dataset(name, scene_ini);
+}
+
+H5mdFile::Dataset H5mdFile::open_series(const std::string& name) const {
+  H5Handle set = ctx_.own(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), H5Dclose, "open", name);
+  const H5Handle space = ctx_.own(H5Dget_space(set.get()), H5Sclose, "query", name);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 1) ctx_.fail("read the shape of", name);
+  std::vector<hsize_t> extent(rank);
+  ctx_.check(H5Sget_simple_extent_dims(space.get(), extent.data(), nullptr), "query", name);
+  return {std::move(set), name, std::move(extent)};
+}
+
+void H5mdFile::truncate(Dataset& set, hsize_t rows) {
+  set.extent[0] = rows;
+  ctx_.check(H5Dset_extent(set.handle.get(), set.extent.data()), "truncate", set.name);
+}
+
+// /checkpoint.new takes every entry, then replaces /checkpoint: a run killed while it is
+// written keeps the last complete one. It counts the frames and observables written so far, so
+// that a resume drops those written after it.
+void H5mdFile::write_checkpoint(StateArchive archive) {
+  require_open();
+  archive.put("writer/frames", static_cast<std::int64_t>(sets_.frame_step.extent[0]));
+  archive.put("writer/observable_rows", static_cast<std::int64_t>(sets_.observable_step.extent[0]));
+  const std::string fresh = "/checkpoint.new";
+  if (H5Lexists(file_.get(), fresh.c_str(), H5P_DEFAULT) > 0)
+    ctx_.check(H5Ldelete(file_.get(), fresh.c_str(), H5P_DEFAULT), "replace", fresh);
+  const auto store = [&](const std::string& name, hid_t type, std::size_t n, const void* data) {
+    const std::string path = fresh + "/" + name;
+    const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), path.c_str(), type,
+                                             dataspace({static_cast<hsize_t>(n)}).get(),
+                                             link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
+                                  H5Dclose, "create", path);
+    if (n > 0) ctx_.check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write", path);
+  };
+  for (const auto& [name, values] : archive.all_reals())
+    store(name, H5T_NATIVE_DOUBLE, values.size(), values.data());
+  for (const auto& [name, values] : archive.all_integers())
+    store(name, H5T_NATIVE_INT64, values.size(), values.data());
+  if (H5Lexists(file_.get(), "/checkpoint", H5P_DEFAULT) > 0)
+    ctx_.check(H5Ldelete(file_.get(), "/checkpoint", H5P_DEFAULT), "replace", "/checkpoint");
+  ctx_.check(H5Lmove(file_.get(), fresh.c_str(), file_.get(), "/checkpoint", H5P_DEFAULT,
+                     H5P_DEFAULT),
+             "rename", fresh);
+  ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
+}
+
 void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows) {
   require_open();
   const hsize_t n = rows.id.size();
@@ -218,6 +326,10 @@ void H5mdFile::write_observables(std::int64_t step, double time, const Observabl
 
 std::filesystem::path H5mdFile::complete() {
   require_open();
+  // A complete run resumes nothing; its checkpoint (with its wall time) would only take room.
+  for (const char* checkpoint : {"/checkpoint", "/checkpoint.new"})
+    if (H5Lexists(file_.get(), checkpoint, H5P_DEFAULT) > 0)
+      ctx_.check(H5Ldelete(file_.get(), checkpoint, H5P_DEFAULT), "remove", checkpoint);
   write_string_attribute("/parameters/granjet", "status", "complete");
   close();
   // An ensemble file holds no frames: nothing to draw, and a sidecar of frames that an earlier
@@ -353,6 +465,20 @@ template <int D>
 H5mdWriter<D>::H5mdWriter(std::filesystem::path path, const RunMetadata& meta,
                           std::size_t max_grains)
     : file_(std::make_unique<detail::H5mdFile>(std::move(path), meta, D, max_grains)) {}
+
+template <int D>
+H5mdWriter<D>::H5mdWriter(std::filesystem::path path, Resume)
+    : file_(std::make_unique<detail::H5mdFile>(std::move(path), D)) {}
+
+template <int D>
+void H5mdWriter<D>::write_checkpoint(const StateArchive& archive) {
+  file_->write_checkpoint(archive);
+}
+
+template <int D>
+void H5mdWriter<D>::replace_scene(const std::string& scene_ini) {
+  file_->replace_scene(scene_ini);
+}
 
 template <int D>
 H5mdWriter<D>::~H5mdWriter() = default;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/particles.hpp"
+#include "core/state_archive.hpp"
 
 namespace granjet::analysis {
 
@@ -45,6 +46,11 @@ class H5mdWriter {
   // removed during a run. Throws FileBusyError (analysis/file_lock.hpp) when another run writes
   // the same file, std::runtime_error naming the file when it cannot be created.
   H5mdWriter(std::filesystem::path path, const RunMetadata& meta, std::size_t max_grains);
+  // Reopens `path` + ".partial" at its checkpoint (read_checkpoint): frames and observables
+  // written after it are dropped and the status is "running" again; the run goes on from
+  // there.
+  struct Resume {};
+  H5mdWriter(std::filesystem::path path, Resume);
   H5mdWriter(const H5mdWriter&) = delete;
   H5mdWriter& operator=(const H5mdWriter&) = delete;
   // If neither finish() nor abandon() ran: closes the file and leaves it as .partial, with
@@ -55,6 +61,11 @@ class H5mdWriter {
   void write_frame(std::int64_t step, double time, const Particles<D>& particles);
   // Appends one row; it becomes durable with the next frame's flush or at the end.
   void write_observables(std::int64_t step, double time, const Observables& obs);
+  // Stores the run's state (with the count of frames and observables so far) as /checkpoint,
+  // replacing the last one, and flushes.
+  void write_checkpoint(const StateArchive& archive);
+  // The stored scene (RunMetadata::scene_ini), replaced: a resume that extends run.t_end.
+  void replace_scene(const std::string& scene_ini);
   // Marks the run complete, closes the file and writes the .xmf sidecar next to the final
   // name. Returns the .partial path, where the caller may add what else the run produced
   // (/fields, /analysis) before publish() renames it: a file under its final name is complete.

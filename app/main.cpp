@@ -22,6 +22,7 @@ namespace {
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
               [--summary run.json] [--seeds 1..10 | 1,4,7] [--quiet]
+  granjet resume RUN.h5.partial [--set run.t_end=T] [--summary run.json] [--quiet]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
               [--quiet]            (mpirun -n K granjet campaign ... spreads it over K ranks)
@@ -43,6 +44,9 @@ run options:
   --seeds LIST      an ensemble: one run per seed (A..B or a,b,c) to OUT.seedN.h5; the
                     analysis' mean and spread over the seeds go to OUT and SUMMARY
   --quiet           no progress rows
+resume options (a run's .partial goes on from its last checkpoint, run.checkpoint_interval):
+  --set KEY=VALUE   only run.t_end (to extend the run), run.threads, run.progress_interval
+  --summary FILE    the JSON summary of the whole run (as run --summary)
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
@@ -93,6 +97,18 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   return granjet::run_command(o, std::cout);
+}
+
+int resume(const std::vector<std::string>& args) {
+  granjet::ResumeOptions o;
+  po::options_description desc;
+  desc.add_options()("file", po::value<std::string>()->required())(
+      "set", po::value(&o.overrides)->composing())("summary", po::value<std::string>())(
+      "quiet", po::bool_switch(&o.quiet));
+  const po::variables_map vm = parse(args, desc, "file");
+  o.partial = vm["file"].as<std::string>();
+  if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
+  return granjet::resume_command(o, std::cout);
 }
 
 int analyze(const std::vector<std::string>& args) {
@@ -182,6 +198,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "run") return run(args);
+    if (command == "resume") return resume(args);
     if (command == "compare") return compare(args);
     if (command == "info") return info(args);
     if (command == "campaign") return campaign(args, all);

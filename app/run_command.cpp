@@ -6,10 +6,12 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "analysis/binary_collision.hpp"
 #include "analysis/analysis_json.hpp"
 #include "analysis/field_writer.hpp"
+#include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
 #include "analysis/kinetic_theory.hpp"
 #include "app/backend_factory.hpp"
@@ -101,23 +103,34 @@ nlohmann::json summary_json(const Scene& scene, const std::string& backend,
   return j;
 }
 
+// Everything of a run that a checkpoint holds besides the simulator: the observers' sums and
+// the loop's cursor (the writer adds its frame and row counts).
+struct RunCursor {
+  double next_output = 0.0;
+  double next_progress = 0.0;
+  double last_output = 0.0;
+  double next_checkpoint = 0.0;
+  double wall_seconds = 0.0;  // of the invocations before this one
+
+  template <class Visitor>
+  void visit_state(Visitor& v) {
+    v("next_output", next_output);
+    v("next_progress", next_progress);
+    v("last_output", last_output);
+    v("next_checkpoint", next_checkpoint);
+    v("wall_seconds", wall_seconds);
+  }
+};
+
 template <int D>
 int run_scene(const Scene& scene, const RunOptions& options, const std::filesystem::path& out_file,
-              std::ostream& out) {
+              std::ostream& out, const StateArchive* resume_from) {
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, scene);
   for (const std::string& note : backend_notes(options.backend, scene))
     std::cerr << "granjet: " << note << "\n";
   const std::vector<std::string> warnings = run_warnings(scene, options.backend);
   for (const std::string& warning : warnings) std::cerr << "granjet: warning: " << warning << "\n";
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
-  analysis::RunMetadata meta;
-  meta.creator_version = std::string(kVersion) + "+" + kCommit;  // semver build metadata
-  meta.backend = options.backend;
-  meta.scene_ini = scene_to_ini(scene);
-  meta.dimension = D;
-  analysis::H5mdWriter<D> writer(out_file, meta, sim->particles().size());
-  writer.write_frame(0, sim->time(), sim->particles());
-  writer.write_observables(0, sim->time(), observables(*sim));
   const Particles<D> initial = sim->particles();
 
   const double t_end = scene.run.t_end;
@@ -125,22 +138,69 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   const double kInf = std::numeric_limits<double>::infinity();
   const bool binary = scene.kind == SceneKind::kBinary;
   analysis::BinaryCollisionTracker<D> tracker;
-  if (binary) {
-    tracker.observe(sim->particles(), sim->time());
-    sim->record_transfers(true);
-  }
+  if (binary) sim->record_transfers(true);
   std::optional<GasObserver<D>> gas;
   if (scene.periodic()) gas.emplace(scene, *sim);
   std::optional<InlineAnalysis<D>> fields;
   if (scene.kind == SceneKind::kJet && scene.analysis.enabled) fields.emplace(scene, *sim);
-  double next_output = scene.output.interval > 0.0 ? scene.output.interval : kInf;
-  double next_progress = scene.run.progress_interval;
-  double last_output = 0.0;
+  RunCursor cursor;
+  cursor.next_output = scene.output.interval > 0.0 ? scene.output.interval : kInf;
+  cursor.next_progress = scene.run.progress_interval;
+  cursor.next_checkpoint = scene.run.checkpoint_interval > 0.0 ? scene.run.checkpoint_interval : kInf;
+  // The observers' state, one visit for writing a checkpoint and for reading one back.
+  const auto visit_observers = [&](auto& visitor) {
+    auto run = visitor.nested("run");
+    cursor.visit_state(run);
+    if (binary) {
+      auto v = visitor.nested("tracker");
+      tracker.visit_state(v);
+    }
+    if (gas) {
+      auto v = visitor.nested("gas");
+      gas->visit_state(v);
+    }
+    if (fields) {
+      auto v = visitor.nested("analysis");
+      fields->visit_state(v);
+    }
+  };
+
+  std::optional<analysis::H5mdWriter<D>> writer;
+  if (resume_from) {
+    writer.emplace(out_file, typename analysis::H5mdWriter<D>::Resume{});
+    writer->replace_scene(scene_to_ini(scene));  // a resume may have extended run.t_end
+    sim->restore(*resume_from);
+    StateReader reader(*resume_from, "app");
+    visit_observers(reader);
+    if (sim->time() > t_end)
+      throw InputError("run.t_end", std::to_string(t_end) + " lies before the checkpoint at t = " +
+                                        std::to_string(sim->time()));
+  } else {
+    analysis::RunMetadata meta;
+    meta.creator_version = std::string(kVersion) + "+" + kCommit;  // semver build metadata
+    meta.backend = options.backend;
+    meta.scene_ini = scene_to_ini(scene);
+    meta.dimension = D;
+    writer.emplace(out_file, meta, sim->particles().size());
+    writer->write_frame(0, sim->time(), sim->particles());
+    writer->write_observables(0, sim->time(), observables(*sim));
+    if (binary) tracker.observe(sim->particles(), sim->time());
+  }
+  const auto checkpoint = [&] {
+    StateArchive archive;
+    sim->checkpoint(archive);
+    archive.put("app/time", sim->time());
+    StateWriter state(archive, "app");
+    visit_observers(state);
+    writer->write_checkpoint(archive);
+  };
+
   ProgressTable progress(out, t_end, options.quiet, event_driven(options.backend));
   std::string status = "complete";
   try {
     while (sim->time() < t_end - 0.5 * dt) {
-      double target = std::min({t_end, next_output, next_progress});
+      double target = std::min({t_end, cursor.next_output, cursor.next_progress,
+                                cursor.next_checkpoint});
       if (binary) target = std::min(target, sim->time() + dt);  // the tracker samples every step
       if (gas) target = std::min(target, std::max(gas->next_time(), sim->time() + 0.5 * dt));
       if (fields)
@@ -150,28 +210,37 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       if (binary) tracker.observe(sim->particles(), t);
       if (gas) gas->observe(*sim);
       if (fields) fields->observe(*sim);
-      if (t >= next_output - 0.5 * dt || t >= t_end - 0.5 * dt) {
-        writer.write_frame(frame_step(sim->stats()), t, sim->particles());
-        writer.write_observables(frame_step(sim->stats()), t, observables(*sim));
-        last_output = t;
-        while (next_output <= t + 0.5 * dt) next_output += scene.output.interval;
+      if (t >= cursor.next_output - 0.5 * dt || t >= t_end - 0.5 * dt) {
+        writer->write_frame(frame_step(sim->stats()), t, sim->particles());
+        writer->write_observables(frame_step(sim->stats()), t, observables(*sim));
+        cursor.last_output = t;
+        while (cursor.next_output <= t + 0.5 * dt) cursor.next_output += scene.output.interval;
       }
-      if (t >= next_progress - 0.5 * dt) {
+      if (t >= cursor.next_progress - 0.5 * dt) {
         progress.row(t, static_cast<std::int64_t>(sim->particles().size()), sim->stats());
-        while (next_progress <= t + 0.5 * dt) next_progress += scene.run.progress_interval;
+        while (cursor.next_progress <= t + 0.5 * dt)
+          cursor.next_progress += scene.run.progress_interval;
+      }
+      if (t >= cursor.next_checkpoint - 0.5 * dt && t < t_end - 0.5 * dt) {
+        while (cursor.next_checkpoint <= t + 0.5 * dt)
+          cursor.next_checkpoint += scene.run.checkpoint_interval;
+        const double earlier = cursor.wall_seconds;
+        cursor.wall_seconds += progress.elapsed_seconds();  // as the checkpoint's
+        checkpoint();
+        cursor.wall_seconds = earlier;
       }
     }
-    if (last_output < sim->time()) {
-      writer.write_frame(frame_step(sim->stats()), sim->time(), sim->particles());
-      writer.write_observables(frame_step(sim->stats()), sim->time(), observables(*sim));
+    if (cursor.last_output < sim->time()) {
+      writer->write_frame(frame_step(sim->stats()), sim->time(), sim->particles());
+      writer->write_observables(frame_step(sim->stats()), sim->time(), observables(*sim));
     }
   } catch (const BlowUpError& e) {
-    const std::filesystem::path kept = writer.abandon(e.what());
+    const std::filesystem::path kept = writer->abandon(e.what());
     std::cerr << "granjet: " << e.what() << "\n"
               << "granjet: frames written so far are kept in " << kept.string() << "\n";
     status = e.what();
   }
-  const double wall = progress.elapsed_seconds();
+  const double wall = cursor.wall_seconds + progress.elapsed_seconds();
   nlohmann::json summary = summary_json(scene, options.backend, *sim, grains_initial, wall, status);
   if (!warnings.empty()) summary["warnings"] = warnings;
   if (binary && tracker.complete()) {
@@ -210,7 +279,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   // the final name comes last, so a file under that name is complete.
   std::optional<std::filesystem::path> partial;
   if (status == "complete") {
-    partial = writer.complete();
+    partial = writer->complete();
     summary["output"] = out_file.string();
     // A window that never opened (t_end before its start) measured nothing: no all-NaN fields.
     if (fields && fields->window_sampled())
@@ -237,7 +306,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     }
   }
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
-  if (partial) writer.publish();
+  if (partial) writer->publish();
   return status == "complete" ? 0 : 3;
 }
 
@@ -257,7 +326,7 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
     o.summary = member_file(options.summary, seed);
     if (!options.quiet) out << "seed " << seed << "\n";
     const std::filesystem::path file = member_file(out_file, seed);
-    worst = std::max(worst, run_scene<D>(one, o, file, out));
+    worst = std::max(worst, run_scene<D>(one, o, file, out, nullptr));
     members.push_back({seed, file});
   }
   const nlohmann::json header = {{"scene", scene.name}, {"backend", options.backend}, {"dimension", D}};
@@ -266,6 +335,47 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
     out << "ensemble of " << combined << " seeds: /fields and /analysis in " << out_file.string()
         << "\n";
   return worst;
+}
+
+// What a resume may change: how long the run goes on, how it reports, and the thread count
+// (the results do not depend on it). Anything else would make it another run.
+const std::vector<std::string> kResumableKeys = {"run.t_end", "run.threads",
+                                                  "run.progress_interval"};
+
+int resume_command(const ResumeOptions& options, std::ostream& out) {
+  const std::filesystem::path& partial = options.partial;
+  if (partial.extension() != ".partial")
+    throw InputError(partial.string(), "is not a run's .partial file (RUN.h5.partial)");
+  const analysis::FileSummary stored = analysis::read_summary(partial);
+  if (!stored.checkpoint)
+    throw InputError(partial.string(), "holds no checkpoint: the run stopped before its first "
+                                       "run.checkpoint_interval; run it again");
+  for (const std::string& assignment : options.overrides) {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    if (std::find(kResumableKeys.begin(), kResumableKeys.end(), key) == kResumableKeys.end())
+      throw InputError(key, "cannot change on resume (it would make another run); allowed: "
+                            "run.t_end, run.threads, run.progress_interval");
+  }
+  std::istringstream ini(stored.scene_ini);
+  const Scene scene = parse_scene(ini, partial.string() + " (stored scene)", options.overrides);
+  if (scene.run.t_end < stored.checkpoint_time)
+    throw InputError("run.t_end", std::to_string(scene.run.t_end) +
+                                      " lies before the checkpoint at t = " +
+                                      std::to_string(stored.checkpoint_time));
+  check_run_budget(scene, stored.backend, physical_memory_bytes());
+  RunOptions run;
+  run.backend = stored.backend;
+  run.summary = options.summary;
+  run.quiet = options.quiet;
+  const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
+  std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
+  std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });
+  check_outputs(partial, outputs);
+  const StateArchive checkpoint = analysis::read_checkpoint(partial);
+  if (!options.quiet)
+    out << "resuming " << out_file.string() << " at t = " << stored.checkpoint_time << "\n";
+  return scene.dimension == 2 ? run_scene<2>(scene, run, out_file, out, &checkpoint)
+                              : run_scene<3>(scene, run, out_file, out, &checkpoint);
 }
 
 int run_command(const RunOptions& options, std::ostream& out) {
@@ -283,8 +393,8 @@ int run_command(const RunOptions& options, std::ostream& out) {
   if (!options.seeds.empty())
     return scene.dimension == 2 ? run_ensemble<2>(scene, options, out_file, out)
                                 : run_ensemble<3>(scene, options, out_file, out);
-  return scene.dimension == 2 ? run_scene<2>(scene, options, out_file, out)
-                              : run_scene<3>(scene, options, out_file, out);
+  return scene.dimension == 2 ? run_scene<2>(scene, options, out_file, out, nullptr)
+                              : run_scene<3>(scene, options, out_file, out, nullptr);
 }
 
 }  // namespace granjet

@@ -26,4 +26,16 @@ struct RunOptions {
 // InputError (exit 2) for bad input before any file is written.
 int run_command(const RunOptions& options, std::ostream& out);
 
+struct ResumeOptions {
+  std::filesystem::path partial;       // RUN.h5.partial with a checkpoint
+  std::vector<std::string> overrides;  // only the keys kResumableKeys names
+  std::filesystem::path summary;       // empty: no JSON summary
+  bool quiet = false;
+};
+
+// `granjet resume`: the run of a .partial goes on from its last checkpoint, bit-identically to
+// a run that was never stopped, to the stored scene's run.t_end (or a later one) and renames
+// the file to RUN.h5 when complete.
+int resume_command(const ResumeOptions& options, std::ostream& out);
+
 }  // namespace granjet

@@ -175,6 +175,10 @@ const std::vector<Key>& keys() {
                          FIELD(run.max_overlap), {0.0, true, 1.0, false}));
     k.push_back(real_key("run.progress_interval", "sim time between progress rows",
                          FIELD(run.progress_interval), kPositive));
+    k.push_back(real_key("run.checkpoint_interval",
+                         "sim time between checkpoints in the run's .partial, from which "
+                         "'granjet resume' goes on bit-identically (0: none)",
+                         FIELD(run.checkpoint_interval), kNonNegative));
     k.push_back(integer_key("run.threads",
                             "OpenMP threads of the soft DEM (results are bit-identical for any)",
                             FIELD(run.threads), 1, kMaxThreads));

@@ -115,9 +115,9 @@ void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
   std::size_t fastest = 0;
   for (std::size_t i = 0; i < p_.size(); ++i)
     if (p_.velocity()[i].squaredNorm() > p_.velocity()[fastest].squaredNorm()) fastest = i;
-  throw BlowUpError("the kinetic energy (with what removed grains carried off) rose " +
-                        std::to_string(100.0 * rise / initial_energy_) +
-                        "% above the initial total although every contact dissipates (e < 1); "
+  throw BlowUpError("the kinetic energy rose " + std::to_string(100.0 * rise / initial_energy_) +
+                        "% above the initial total (counting what removed grains carried off) "
+                        "although every contact dissipates (e < 1); "
                         "only the integration adds energy: run.dt = " + std::to_string(dt_) +
                         " (" + std::to_string(dt_ / scene_.contact.contact_time) +
                         " t_c) is too long for the contacts (the study uses 0.02 t_c); "

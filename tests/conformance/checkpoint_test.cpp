@@ -25,6 +25,8 @@ struct Case {
   std::vector<std::string> overrides;
 };
 
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
 // The grains' state in id order, every number exact.
 template <int D>
 struct State {

@@ -1,0 +1,132 @@
+// `granjet resume` (issue 14): a run killed with SIGKILL after a checkpoint and resumed gives
+// the straight run's frames, observables, fields, analysis and summary (minus timings), bit for
+// bit; a resume may extend run.t_end and nothing that would make it another run.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+#include "analysis/h5md_reader.hpp"
+#include "command_fixture.hpp"
+
+namespace granjet {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Resume : public testing::CommandTest {
+ protected:
+  // Starts `granjet run ...` and kills it (SIGKILL) once its .partial holds a checkpoint at
+  // `kill_after` or later. Returns false if the run ended first.
+  bool run_and_kill(const std::string& args, const fs::path& partial, double kill_after) {
+    const pid_t child = fork();
+    if (child == 0) {
+      const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > /dev/null 2>&1";
+      execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), nullptr);
+      _exit(127);
+    }
+    bool killed = false;
+    for (int k = 0; k < 6000 && !killed; ++k) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      int status = 0;
+      if (waitpid(child, &status, WNOHANG) == child) return false;  // ended on its own
+      try {
+        const analysis::FileSummary s = analysis::read_summary(partial);
+        if (s.checkpoint && s.checkpoint_time >= kill_after) {
+          kill(child, SIGKILL);
+          killed = true;
+        }
+      } catch (const std::exception&) {
+        // not yet created, or caught mid-write: look again
+      }
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    return killed && WIFSIGNALED(status);
+  }
+
+  static nlohmann::json without_timings(nlohmann::json j) {
+    for (const char* key : {"wall_seconds", "particle_steps_per_second", "collisions_per_second",
+                            "output"})
+      j.erase(key);
+    if (j.contains("analysis")) j["analysis"].erase("seconds");
+    return j;
+  }
+
+  void expect_same_run(const std::string& a, const std::string& b) {
+    for (const char* group : {"/particles", "/observables", "/fields", "/analysis"}) {
+      const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (dir_ / (a + ".h5")).string() +
+                              " " + (dir_ / (b + ".h5")).string() + " " + group + " " + group;
+      EXPECT_EQ(std::system(cmd.c_str()), 0) << group;
+    }
+    EXPECT_EQ(without_timings(summary(a + ".json")), without_timings(summary(b + ".json")));
+  }
+};
+
+TEST_F(Resume, KilledRunResumedIsBitIdenticalOnBothBackends) {
+  struct Case {
+    const char* scene;
+    const char* backend;
+    const char* sets;
+    double kill_after;
+  };
+  for (const Case& c :
+       {Case{"jet3d.ini", "soft_dem",
+             "--set jet.grains=6000 --set run.t_end=30 --set analysis.window_start=5 "
+             "--set analysis.window_end=30",
+             8.0},
+        Case{"jet3d.ini", "event_driven",
+             "--set jet.grains=20000 --set run.t_end=40 --set analysis.window_start=5 "
+             "--set analysis.window_end=40",
+             8.0}}) {
+    const std::string base = "run " + scene(c.scene) + " --quiet --backend " + c.backend + " " +
+                             c.sets + " --set run.checkpoint_interval=2 --set output.interval=1";
+    const std::string straight = std::string("straight_") + c.backend;
+    const std::string killed = std::string("killed_") + c.backend;
+    const auto paths = [&](const std::string& name) {
+      return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
+             (dir_ / (name + ".json")).string();
+    };
+    ASSERT_EQ(granjet(base + paths(straight)), 0) << err_;
+    const fs::path partial = dir_ / (killed + ".h5.partial");
+    ASSERT_TRUE(run_and_kill(base + paths(killed), partial, c.kill_after))
+        << c.backend << ": the run ended before it could be killed";
+    EXPECT_FALSE(fs::exists(dir_ / (killed + ".h5")));
+    ASSERT_EQ(granjet("resume " + partial.string() + " --quiet --summary " +
+                      (dir_ / (killed + ".json")).string()),
+              0)
+        << err_;
+    EXPECT_FALSE(fs::exists(partial));
+    expect_same_run(straight, killed);
+  }
+}
+
+// A run killed before its run.t_end = 12 and resumed with run.t_end = 20 is the run of 20.
+TEST_F(Resume, ResumeMayExtendTheRunAndNothingElse) {
+  const std::string base = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=6000 --set run.checkpoint_interval=2"
+                           " --set analysis.enabled=false --set output.interval=1";
+  ASSERT_EQ(granjet(base + " --set run.t_end=20 --out " + (dir_ / "long.h5").string()), 0) << err_;
+  ASSERT_TRUE(run_and_kill(base + " --set run.t_end=12 --out " + (dir_ / "short.h5").string(),
+                           dir_ / "short.h5.partial", 4.0));
+  const std::string partial = (dir_ / "short.h5.partial").string();
+  EXPECT_EQ(granjet("resume " + partial + " --set contact.friction=0"), 2);
+  EXPECT_NE(err_.find("contact.friction: cannot change on resume"), std::string::npos) << err_;
+  EXPECT_EQ(granjet("resume " + partial + " --set run.t_end=1"), 2);
+  EXPECT_NE(err_.find("before the checkpoint"), std::string::npos) << err_;
+  EXPECT_EQ(granjet("resume " + (dir_ / "long.h5").string()), 2);
+  EXPECT_NE(err_.find("not a run's .partial"), std::string::npos) << err_;
+  ASSERT_EQ(granjet("resume " + partial + " --quiet --set run.t_end=20"), 0) << err_;
+  for (const char* group : {"/particles", "/observables"}) {
+    const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (dir_ / "long.h5").string() +
+                            " " + (dir_ / "short.h5").string() + " " + group + " " + group;
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << group;
+  }
+}
+
+}  // namespace
+}  // namespace granjet
