@@ -17,6 +17,7 @@
 #include "app/backend_factory.hpp"
 #include "app/ensemble_output.hpp"
 #include "app/gas_observer.hpp"
+#include "app/interrupts.hpp"
 #include "app/inline_analysis.hpp"
 #include "app/output_paths.hpp"
 #include "app/progress_table.hpp"
@@ -196,6 +197,8 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   };
 
   ProgressTable progress(out, t_end, options.quiet, event_driven(options.backend));
+  const Interrupts interrupts;
+  sim->stop_when(&interrupts.stop_flag());
   std::string status = "complete";
   try {
     while (sim->time() < t_end - 0.5 * dt) {
@@ -206,6 +209,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       if (fields)
         target = std::min(target, std::max(fields->next_time(), sim->time() + 0.5 * dt));
       sim->advance_to(target);
+      if (interrupts.signal() != 0) break;  // between the observers' times: none looks
       const double t = sim->time();
       if (binary) tracker.observe(sim->particles(), t);
       if (gas) gas->observe(*sim);
@@ -230,7 +234,15 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
         cursor.wall_seconds = earlier;
       }
     }
-    if (cursor.last_output < sim->time()) {
+    if (interrupts.signal() != 0) {
+      cursor.wall_seconds += progress.elapsed_seconds();
+      checkpoint();
+      status = "interrupted";
+      const std::filesystem::path kept = writer->abandon(status);
+      std::cerr << "granjet: interrupted (signal " << interrupts.signal() << ") at t = "
+                << sim->time() << "; the run is kept in " << kept.string()
+                << "; go on with: granjet resume " << kept.string() << "\n";
+    } else if (cursor.last_output < sim->time()) {
       writer->write_frame(frame_step(sim->stats()), sim->time(), sim->particles());
       writer->write_observables(frame_step(sim->stats()), sim->time(), observables(*sim));
     }
@@ -240,7 +252,8 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
               << "granjet: frames written so far are kept in " << kept.string() << "\n";
     status = e.what();
   }
-  const double wall = cursor.wall_seconds + progress.elapsed_seconds();
+  const double wall =
+      cursor.wall_seconds + (status == "interrupted" ? 0.0 : progress.elapsed_seconds());
   nlohmann::json summary = summary_json(scene, options.backend, *sim, grains_initial, wall, status);
   if (!warnings.empty()) summary["warnings"] = warnings;
   if (binary && tracker.complete()) {
@@ -307,6 +320,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   }
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
   if (partial) writer->publish();
+  if (status == "interrupted") return 128 + interrupts.signal();
   return status == "complete" ? 0 : 3;
 }
 
@@ -326,7 +340,9 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
     o.summary = member_file(options.summary, seed);
     if (!options.quiet) out << "seed " << seed << "\n";
     const std::filesystem::path file = member_file(out_file, seed);
-    worst = std::max(worst, run_scene<D>(one, o, file, out, nullptr));
+    const int code = run_scene<D>(one, o, file, out, nullptr);
+    if (code >= 128) return code;  // interrupted: the other seeds wait too
+    worst = std::max(worst, code);
     members.push_back({seed, file});
   }
   const nlohmann::json header = {{"scene", scene.name}, {"backend", options.backend}, {"dimension", D}};

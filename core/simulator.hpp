@@ -2,6 +2,7 @@
 // momentum transfer are the common currency through which analysis sees either backend.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -80,6 +81,16 @@ class Simulator {
   // of the same scene and backend.
   virtual void checkpoint(StateArchive& out) = 0;
   virtual void restore(const StateArchive& in) = 0;
+
+  // While *flag is set, advance_to returns early: after the current step (soft DEM) or event
+  // (event-driven), with time() where it stopped. The app sets it from a signal handler.
+  void stop_when(const std::atomic<bool>* flag) { stop_ = flag; }
+
+ protected:
+  bool stop_requested() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
+
+ private:
+  const std::atomic<bool>* stop_ = nullptr;
 };
 
 }  // namespace granjet

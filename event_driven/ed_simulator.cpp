@@ -188,14 +188,16 @@ void EdSimulator<D>::restore(const StateArchive& a) {
 
 template <int D>
 void EdSimulator<D>::advance_to(double t) {
+  bool stopped = false;
   while (!calendar_.empty()) {
     const CalendarEntry next = calendar_.top();
     if (next.time > t - origin_) break;
+    if ((stopped = this->stop_requested())) break;
     clock_ = next.time;
     process(next.grain);
     if (++events_since_shift_ >= shift_every_) shift_time_origin();
   }
-  time_ = std::max(time_, t);
+  time_ = std::max(time_, stopped ? origin_ + clock_ : t);
   take_snapshot();
   if (verify_ == Verification::kOn) check_no_overlaps();
 }

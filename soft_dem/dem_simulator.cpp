@@ -87,7 +87,7 @@ void DemSimulator<D, kFriction, kMono, Space>::advance_to(double t) {
   // The first step at or after t (a relative 1e-9 absorbs round-off in t / dt).
   const auto target = static_cast<std::int64_t>(std::ceil(t / dt_ - 1e-9));
   if (step_ >= target) return;
-  while (step_ < target) step();
+  while (step_ < target && !this->stop_requested()) step();
   // Never hand back a blown-up state: the rebuild's check comes only at the next step.
   check_finite();
   check_energy();

@@ -8,6 +8,10 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <utility>
+#include <vector>
 #include <thread>
 
 #include "analysis/h5md_reader.hpp"
@@ -20,25 +24,28 @@ namespace fs = std::filesystem;
 
 class Resume : public testing::CommandTest {
  protected:
-  // Starts `granjet run ...` and kills it (SIGKILL) once its .partial holds a checkpoint at
-  // `kill_after` or later. Returns false if the run ended first.
-  bool run_and_kill(const std::string& args, const fs::path& partial, double kill_after) {
+  // Starts `granjet ARGS` (stderr into the test's directory) and sends it `signals` once its
+  // .partial holds a checkpoint at `after` or later. Returns its wait status, or -1 if it ended
+  // first.
+  int run_and_signal(const std::string& args, const fs::path& partial, double after,
+                     const std::vector<int>& signals) {
     const pid_t child = fork();
     if (child == 0) {
-      const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > /dev/null 2>&1";
+      const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > /dev/null 2> " +
+                              (dir_ / "stderr.txt").string();
       execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), nullptr);
       _exit(127);
     }
-    bool killed = false;
-    for (int k = 0; k < 6000 && !killed; ++k) {
+    bool sent = false;
+    for (int k = 0; k < 6000 && !sent; ++k) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
       int status = 0;
-      if (waitpid(child, &status, WNOHANG) == child) return false;  // ended on its own
+      if (waitpid(child, &status, WNOHANG) == child) return -1;  // ended on its own
       try {
         const analysis::FileSummary s = analysis::read_summary(partial);
-        if (s.checkpoint && s.checkpoint_time >= kill_after) {
-          kill(child, SIGKILL);
-          killed = true;
+        if (s.checkpoint && s.checkpoint_time >= after) {
+          for (int signal : signals) kill(child, signal);
+          sent = true;
         }
       } catch (const std::exception&) {
         // not yet created, or caught mid-write: look again
@@ -46,7 +53,14 @@ class Resume : public testing::CommandTest {
     }
     int status = 0;
     waitpid(child, &status, 0);
-    return killed && WIFSIGNALED(status);
+    std::ifstream in(dir_ / "stderr.txt");
+    err_.assign(std::istreambuf_iterator<char>(in), {});
+    return sent ? status : -1;
+  }
+  // SIGKILL: nothing of the run's own goes on.
+  bool run_and_kill(const std::string& args, const fs::path& partial, double after) {
+    const int status = run_and_signal(args, partial, after, {SIGKILL});
+    return status != -1 && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
   }
 
   static nlohmann::json without_timings(nlohmann::json j) {
@@ -102,6 +116,38 @@ TEST_F(Resume, KilledRunResumedIsBitIdenticalOnBothBackends) {
         << err_;
     EXPECT_FALSE(fs::exists(partial));
     expect_same_run(straight, killed);
+  }
+}
+
+// SIGINT, SIGTERM, SIGHUP: the run stops after its step, writes a checkpoint, keeps its
+// .partial as "interrupted" with its summary, says how to resume, and exits 128 + the signal;
+// resumed, it completes. A second signal exits at once, with the same code.
+TEST_F(Resume, SignalsCheckpointAndExitWithTheirCode) {
+  const std::string base = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=6000 --set run.t_end=30"
+                           " --set run.checkpoint_interval=2 --set analysis.enabled=false";
+  for (const auto& [signals, code] :
+       std::vector<std::pair<std::vector<int>, int>>{{{SIGINT}, 130},
+                                                    {{SIGTERM}, 143},
+                                                    {{SIGHUP}, 129},
+                                                    {{SIGTERM, SIGTERM}, 143}}) {
+    const std::string name = "s" + std::to_string(code) + "_" + std::to_string(signals.size());
+    const fs::path partial = dir_ / (name + ".h5.partial");
+    const int status = run_and_signal(base + " --out " + (dir_ / (name + ".h5")).string() +
+                                          " --summary " + (dir_ / (name + ".json")).string(),
+                                      partial, 2.0, signals);
+    ASSERT_TRUE(status != -1 && WIFEXITED(status)) << name << " status " << status << err_;
+    EXPECT_EQ(WEXITSTATUS(status), code) << name << err_;
+    const analysis::FileSummary kept = analysis::read_summary(partial);
+    EXPECT_TRUE(kept.checkpoint) << name;
+    if (signals.size() > 1) continue;  // the second signal may come before the checkpoint
+    EXPECT_EQ(kept.status, "interrupted");
+    EXPECT_EQ(summary(name + ".json")["status"], "interrupted");
+    EXPECT_NE(err_.find("granjet resume " + partial.string()), std::string::npos) << err_;
+    ASSERT_EQ(granjet("resume " + partial.string() + " --quiet"), 0) << err_;
+    const analysis::FileSummary done = analysis::read_summary(dir_ / (name + ".h5"));
+    EXPECT_EQ(done.status, "complete");
+    EXPECT_EQ(done.last_time, 30.0);
   }
 }
 
