@@ -1,7 +1,9 @@
 // The granjet command: run | compare | campaign | info | analyze | --help | --version. Exit codes: 0 done, 1 failure
 // (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as .partial).
 #include <boost/program_options.hpp>
+#include <algorithm>
 #include <iostream>
+#include <sstream>
 
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
@@ -21,7 +23,7 @@ namespace {
 
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
-              [--summary run.json] [--seeds 1..10 | 1,4,7] [--quiet]
+              [--summary run.json] [--seeds 1..10 | 1,4,7] [--author NAME] [--quiet]
   granjet resume RUN.h5.partial [--set run.t_end=T] [--summary run.json] [--quiet]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
@@ -31,10 +33,7 @@ constexpr const char* kUsage = R"(usage:
   granjet --help | --version
 )";
 
-void print_help() {
-  std::cout << "granjet " << granjet::kVersion
-            << ": granular jets on a soft-sphere DEM and an event-driven backend\n\n"
-            << kUsage << R"(
+constexpr const char* kOptions = R"(
 run options:
   --backend NAME    soft_dem (default) or event_driven (hard spheres)
   --set KEY=VALUE   override a scene key (repeatable)
@@ -43,6 +42,7 @@ run options:
   --summary FILE    JSON summary of the run
   --seeds LIST      an ensemble: one run per seed (A..B or a,b,c) to OUT.seedN.h5; the
                     analysis' mean and spread over the seeds go to OUT and SUMMARY
+  --author NAME     the H5MD author (default: $GRANJET_AUTHOR, else the login name)
   --quiet           no progress rows
 resume options (a run's .partial goes on from its last checkpoint, run.checkpoint_interval):
   --set KEY=VALUE   only run.t_end (to extend the run), run.threads, run.progress_interval
@@ -68,9 +68,39 @@ info options:
 analyze options (measurements of the stored frames; contact stress needs inline analysis):
   --window T0:T1    time-average window (default: the scene's analysis.window_*)
   --summary FILE    JSON of the fields and global measurements
+)";
 
-scene keys (INI sections [scene], [contact], ... in the scene file):
-)" << granjet::scene_keys_help();
+void print_help() {
+  std::cout << "granjet " << granjet::kVersion
+            << ": granular jets on a soft-sphere DEM and an event-driven backend\n\n"
+            << kUsage << kOptions
+            << "\nscene keys (INI sections [scene], [contact], ... in the scene file):\n"
+            << granjet::scene_keys_help();
+}
+
+// `granjet COMMAND --help`: the command's usage lines and options, cut from the whole help;
+// for run, resume and compare the scene keys too.
+void print_command_help(const std::string& command) {
+  std::istringstream usage(kUsage), options(kOptions);
+  std::cout << "usage:\n";
+  bool in_usage = false;
+  for (std::string line; std::getline(usage, line);) {
+    if (line.starts_with("  granjet ")) in_usage = line.starts_with("  granjet " + command + " ");
+    if (in_usage) std::cout << line << "\n";
+  }
+  bool in_block = false;
+  for (std::string line; std::getline(options, line);) {
+    if (!line.starts_with(" ")) in_block = line.starts_with(command + " options");
+    if (in_block) std::cout << line << "\n";
+  }
+  if (command == "run" || command == "resume" || command == "compare")
+    std::cout << "\nscene keys (INI sections [scene], [contact], ... in the scene file):\n"
+              << granjet::scene_keys_help();
+}
+
+bool asks_for_help(const std::vector<std::string>& args) {
+  return std::find(args.begin(), args.end(), "--help") != args.end() ||
+         std::find(args.begin(), args.end(), "-h") != args.end();
 }
 
 // Parses a subcommand's arguments; `positional` names its one positional argument.
@@ -90,7 +120,8 @@ int run(const std::vector<std::string>& args) {
   desc.add_options()("scene", po::value<std::string>()->required())(
       "backend", po::value(&o.backend))("set", po::value(&o.overrides)->composing())(
       "out", po::value<std::string>())("summary", po::value<std::string>())(
-      "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet));
+      "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet))(
+      "author", po::value(&o.author));
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
   if (vm.count("seeds")) o.seeds = granjet::parse_seeds(vm["seeds"].as<std::string>(), "--seeds");
@@ -195,6 +226,13 @@ int main(int argc, char** argv) {
     }
     if (command == "--version") {
       std::cout << "granjet " << granjet::kVersion << " (commit " << granjet::kCommit << ")\n";
+      return 0;
+    }
+    const std::vector<std::string> commands = {"run", "resume", "compare", "info", "campaign",
+                                               "analyze"};
+    if (std::find(commands.begin(), commands.end(), command) != commands.end() &&
+        asks_for_help(args)) {
+      print_command_help(command);
       return 0;
     }
     if (command == "run") return run(args);

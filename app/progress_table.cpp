@@ -8,9 +8,10 @@ namespace granjet {
 ProgressTable::ProgressTable(std::ostream& out, double t_end, bool quiet, bool event_driven)
     : out_(out), t_end_(t_end), quiet_(quiet), event_driven_(event_driven) {
   if (quiet_) return;
-  char line[160];
-  std::snprintf(line, sizeof line, "%10s %7s %8s %11s %13s %9s\n", "time", "done", "grains",
-                event_driven_ ? "collisions" : "contacts",
+  char line[200];
+  std::snprintf(line, sizeof line, "%10s %7s %11s %8s %11s %11s %11s %13s %9s\n", "time", "done",
+                event_driven_ ? "events" : "step", "grains",
+                event_driven_ ? "collisions" : "contacts", "E_kin", "E_diss",
                 event_driven_ ? "collisions/s" : "psteps/s", "ETA [s]");
   out_ << line << std::flush;
 }
@@ -19,7 +20,8 @@ double ProgressTable::elapsed_seconds() const {
   return std::chrono::duration<double>(Clock::now() - start_).count();
 }
 
-void ProgressTable::row(double time, std::int64_t grains, const SimStats& stats) {
+void ProgressTable::row(double time, std::int64_t grains, const SimStats& stats,
+                        const EnergyBalance& energy) {
   const Clock::time_point now = Clock::now();
   const double interval = std::chrono::duration<double>(now - last_).count();
   // The work counter of the backend: grain-steps (soft DEM) or collisions (event-driven).
@@ -31,10 +33,12 @@ void ProgressTable::row(double time, std::int64_t grains, const SimStats& stats)
   const double done = time / t_end_;
   const double eta = done > 0.0 ? elapsed_seconds() * (1.0 - done) / done : 0.0;
   const std::int64_t count = event_driven_ ? stats.collisions : stats.contacts;
-  char line[160];
-  std::snprintf(line, sizeof line, "%10.3f %6.1f%% %8lld %11lld %13.4g %9.1f\n", time,
-                100.0 * done, static_cast<long long>(grains), static_cast<long long>(count), rate,
-                eta);
+  const std::int64_t step = event_driven_ ? stats.events : stats.steps;
+  char line[200];
+  std::snprintf(line, sizeof line, "%10.3f %6.1f%% %11lld %8lld %11lld %11.5g %11.5g %13.4g %9.1f\n",
+                time, 100.0 * done, static_cast<long long>(step), static_cast<long long>(grains),
+                static_cast<long long>(count), energy.kinetic + energy.rotational,
+                energy.dissipated, rate, eta);
   out_ << line << std::flush;
 }
 

@@ -1,5 +1,6 @@
-// The progress rows of `granjet run`: sim time, % done, grains, contacts and particle-steps/s
-// (soft DEM) or collisions and collisions/s (event-driven), ETA.
+// The progress rows of `granjet run`: sim time, % done, step (event-driven: events), grains,
+// contacts (collisions), kinetic (with rotational) and dissipated energy, particle-steps/s
+// (collisions/s), ETA.
 #pragma once
 
 #include <chrono>
@@ -13,7 +14,7 @@ namespace granjet {
 class ProgressTable {
  public:
   ProgressTable(std::ostream& out, double t_end, bool quiet, bool event_driven);
-  void row(double time, std::int64_t grains, const SimStats& stats);
+  void row(double time, std::int64_t grains, const SimStats& stats, const EnergyBalance& energy);
   double elapsed_seconds() const;
 
  private:

@@ -1,6 +1,7 @@
 #include "app/run_command.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -104,6 +105,14 @@ nlohmann::json summary_json(const Scene& scene, const std::string& backend,
   return j;
 }
 
+// Who made the run, for H5MD's /h5md/author: --author, else $GRANJET_AUTHOR, else the login.
+std::string author_of(const RunOptions& options) {
+  if (!options.author.empty()) return options.author;
+  for (const char* variable : {"GRANJET_AUTHOR", "USER", "LOGNAME"})
+    if (const char* value = std::getenv(variable); value != nullptr && *value != '\0') return value;
+  return "granjet user";
+}
+
 // Everything of a run that a checkpoint holds besides the simulator: the observers' sums and
 // the loop's cursor (the writer adds its frame and row counts).
 struct RunCursor {
@@ -179,6 +188,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   } else {
     analysis::RunMetadata meta;
     meta.creator_version = std::string(kVersion) + "+" + kCommit;  // semver build metadata
+    meta.author = author_of(options);
     meta.backend = options.backend;
     meta.scene_ini = scene_to_ini(scene);
     meta.dimension = D;
@@ -196,6 +206,9 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     writer->write_checkpoint(archive);
   };
 
+  if (!options.quiet)
+    out << (resume_from ? "continuing " : "writing ") << out_file.string() << " (" << options.backend
+        << ", " << D << "D, " << sim->particles().size() << " grains, t_end " << t_end << ")\n";
   ProgressTable progress(out, t_end, options.quiet, event_driven(options.backend));
   const Interrupts interrupts;
   sim->stop_when(&interrupts.stop_flag());
@@ -221,7 +234,8 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
         while (cursor.next_output <= t + 0.5 * dt) cursor.next_output += scene.output.interval;
       }
       if (t >= cursor.next_progress - 0.5 * dt) {
-        progress.row(t, static_cast<std::int64_t>(sim->particles().size()), sim->stats());
+        progress.row(t, static_cast<std::int64_t>(sim->particles().size()), sim->stats(),
+                     sim->energy());
         while (cursor.next_progress <= t + 0.5 * dt)
           cursor.next_progress += scene.run.progress_interval;
       }
@@ -319,7 +333,10 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     }
   }
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
-  if (partial) writer->publish();
+  if (partial) {
+    writer->publish();
+    if (!options.quiet) out << "wrote " << out_file.string() << "\n";
+  }
   if (status == "interrupted") return 128 + interrupts.signal();
   return status == "complete" ? 0 : 3;
 }

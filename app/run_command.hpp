@@ -16,6 +16,8 @@ struct RunOptions {
   std::filesystem::path out;           // empty: <scene file stem>.h5 in the working directory
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
+  // The H5MD author (/h5md/author/name); empty: $GRANJET_AUTHOR, else the login name.
+  std::string author;
   // An ensemble: one run per seed (run.seed), each to <out stem>.seed<N>.h5 (and
   // <summary stem>.seed<N>.json); the mean and spread over seeds of the analysis go to `out`
   // and `summary`. Empty: one run with the scene's seed.

@@ -304,10 +304,39 @@ const std::vector<Key>& keys() {
 
 #undef FIELD
 
+// Levenshtein distance: the edits (insert, delete, replace) from a to b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// "; did you mean run.t_end?" for the nearest key within a few edits, else nothing.
+std::string suggestion(const std::string& name) {
+  const Key* best = nullptr;
+  std::size_t best_distance = 3;  // more edits than this are another word
+  for (const Key& k : keys())
+    if (const std::size_t d = edit_distance(name, k.name); d <= best_distance) {
+      best = &k;
+      best_distance = d;
+    }
+  return best ? "; did you mean " + best->name + "?" : "";
+}
+
 const Key& find_key(const std::string& name) {
   for (const Key& k : keys())
     if (k.name == name) return k;
-  throw InputError(name, "unknown key; see 'granjet --help' for the scene keys");
+  throw InputError(name, "unknown key" + suggestion(name) +
+                             " (see 'granjet --help' for the scene keys)");
 }
 
 void apply_override(Scene& scene, const std::string& assignment) {
@@ -408,8 +437,8 @@ Scene parse_scene_text(const std::string& text, const std::string& source,
   std::set<std::string> given;
   for (const po::option& o : parsed.options) {
     if (o.unregistered)
-      throw InputError(o.string_key, "unknown key in " + source +
-                                         "; see 'granjet --help' for the scene keys");
+      throw InputError(o.string_key, "unknown key in " + source + suggestion(o.string_key) +
+                                         " (see 'granjet --help' for the scene keys)");
     if (!given.insert(o.string_key).second) {
       std::string where;
       for (const int line : assignment_lines(text, o.string_key))

@@ -2,8 +2,11 @@
 // the binary scene's measured restitution, and bit-identical reruns.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "analysis/field_reader.hpp"
@@ -124,6 +127,35 @@ TEST_F(GranjetCommand, BlowUpStopsWithStepAndGrainsAndKeepsAReadablePartialFile)
   const auto summary = analysis::read_summary(partial);
   EXPECT_NE(summary.status.find("blow-up"), std::string::npos);
   EXPECT_GE(summary.frames, 1u);
+}
+
+// CLI habits (issue 15): every subcommand answers --help, the progress rows carry the step and
+// the energies, the output is named at start and end, and the H5MD author is the user's.
+TEST_F(GranjetCommand, SubcommandHelpProgressColumnsAndAuthor) {
+  for (const std::string command : {"run", "resume", "compare", "campaign", "info", "analyze"}) {
+    ASSERT_EQ(granjet(command + " --help"), 0) << command << ": " << err_;
+    std::ifstream in(dir_ / "stdout.txt");
+    const std::string help{std::istreambuf_iterator<char>(in), {}};
+    EXPECT_NE(help.find("granjet " + command + " "), std::string::npos) << help;
+    EXPECT_NE(help.find(command + " options"), std::string::npos) << help;
+  }
+  const fs::path out = dir_ / "a.h5";
+  ASSERT_EQ(granjet("run " + scene("jet3d.ini") + " --set jet.grains=200 --set run.t_end=2" +
+                    " --set run.progress_interval=1 --author 'A. Physicist' --out " + out.string()),
+            0)
+      << err_;
+  std::ifstream in(dir_ / "stdout.txt");
+  const std::string printed{std::istreambuf_iterator<char>(in), {}};
+  const std::vector<std::string> words = {"writing " + out.string(), "step", "E_kin", "E_diss",
+                                         "wrote " + out.string()};
+  for (const std::string& word : words)
+    EXPECT_NE(printed.find(word), std::string::npos) << word << " in\n" << printed;
+  const std::string h5dump = "h5dump -a /h5md/author/name " + out.string() + " > " +
+                             (dir_ / "author.txt").string();
+  ASSERT_EQ(std::system(h5dump.c_str()), 0);
+  std::ifstream author(dir_ / "author.txt");
+  EXPECT_NE(std::string(std::istreambuf_iterator<char>(author), {}).find("A. Physicist"),
+            std::string::npos);
 }
 
 }  // namespace

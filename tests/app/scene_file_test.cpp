@@ -155,6 +155,8 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   // A removal region inside the jet took its outer grains before they reached the target.
   expect_refused({"region.radius=5"}, "region.radius", "cuts the jet (outer radius 5)");
   expect_refused({"no.such_key=1"}, "no.such_key", "unknown key");
+  expect_refused({"run.tend=5"}, "run.tend", "unknown key; did you mean run.t_end?");
+  expect_refused({"contact.fricton=0"}, "contact.fricton", "did you mean contact.friction?");
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");
 }
 
@@ -166,6 +168,8 @@ TEST(SceneFile, UnknownKeyInFileAndMissingFileAreRefused) {
           parse_scene(in, "typo.ini", {});
         } catch (const InputError& e) {
           EXPECT_NE(std::string(e.what()).find("contact.restitutoin"), std::string::npos);
+          EXPECT_NE(std::string(e.what()).find("did you mean contact.restitution?"),
+                    std::string::npos);
           throw;
         }
       },
