@@ -101,7 +101,8 @@ void check_memory(const Scene& s, double memory_bytes) {
                             " GB; this machine has " + number(memory_bytes / 1e9) + " GB");
 }
 
-// Linear spring-dashpot: a head-on contact at normal speed v overlaps by at most v t_c / pi. The
+// The linear spring-dashpot [3.1] with t_c from [3.4]: a head-on contact at normal speed v
+// overlaps by at most v t_c / pi (the undamped half-period's amplitude v / omega_0). The
 // characteristic speed is the scene's (the jet's, the binary's, or the gas's rms relative
 // speed sqrt(2 D T), with T = sum m v^2 / (D N)).
 void check_soft_overlap(const Scene& s) {
