@@ -25,6 +25,23 @@ struct PairImpulse {
   Vec<D> impulse;  // on i from j
 };
 
+// The forces of one instant, for per-grain output (H5MD force, force chains).
+template <int D>
+struct ForceSample {
+  // A touching pair, or a grain and the plate (j = kPlateId): the force on i from j split
+  // along the contact normal, and the overlap.
+  struct Contact {
+    GrainId i = 0;
+    GrainId j = 0;
+    Vec<D> normal_force;
+    Vec<D> tangential_force;
+    double overlap = 0.0;
+  };
+  std::vector<Contact> contacts;
+  // Each grain's total force (contacts, plate, tethers), in the order of particles().
+  std::vector<Vec<D>> total;
+};
+
 struct SimStats {
   std::int64_t steps = 0;          // DEM time steps (0 for event-driven)
   std::int64_t particle_steps = 0; // sum over steps of the grains integrated (free grains)
@@ -73,6 +90,14 @@ class Simulator {
   // Time-stepped backends sample on demand and ignore this.
   virtual void record_transfers(bool on) { (void)on; }
   virtual SimStats stats() const = 0;
+  // Whether sample_forces() has something to say: hard spheres interact by impulses only.
+  virtual bool has_contact_forces() const { return false; }
+  // The forces at the current state, sampled without advancing anything (contact histories
+  // are read, not stepped).
+  virtual void sample_forces(ForceSample<D>& out) const {
+    (void)out;
+    throw std::logic_error(std::string(backend()) + " has no contact forces");
+  }
   virtual EnergyBalance energy() const = 0;
   // Checkpoint: brings the state into a form that a simulator built anew from the same scene
   // takes over exactly (soft DEM: a neighbour-list rebuild; event-driven: every grain at one

@@ -497,6 +497,37 @@ void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<Pai
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
+void DemSimulator<D, kFriction, kMono, Space>::sample_forces(ForceSample<D>& out) const {
+  const auto id = p_.id();
+  out.contacts.clear();
+  out.total.assign(p_.size(), Vec<D>::Zero());
+  const auto add = [&](std::size_t i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
+    // Without friction the law's force lies along n: projecting would only add rounding.
+    const Vec<D> normal = kFriction ? Vec<D>(f.dot(g.n) * g.n) : f;
+    out.contacts.push_back({id[i], j, normal, f - normal, g.overlap});
+    out.total[i] += f;
+  };
+  for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
+                       const Vec<D>& v_rel) {
+    Vec<D> shear = history(k);  // a copy: sampling must not advance the history
+    const Vec<D> f = law_.force(g, v_rel, shear);
+    add(i, id[j], g, f);
+    out.total[j] -= f;
+  }, [](std::uint32_t) {});
+  if (plate_)
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      plate_contact_of(
+          i,
+          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+            Vec<D> shear = plate_history(i);  // a copy, as above
+            add(i, kPlateId, g, plate_law_.force(g, v_rel, shear));
+          },
+          [] {});
+  if (tethered_)
+    wall_.add_forces(p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
 EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {

@@ -39,6 +39,8 @@ class DemSimulator final : public Simulator<D> {
   const Particles<D>& particles() const override { return p_; }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   SimStats stats() const override { return stats_; }
+  bool has_contact_forces() const override { return true; }
+  void sample_forces(ForceSample<D>& out) const override;
   EnergyBalance energy() const override;
   void checkpoint(StateArchive& out) override;
   void restore(const StateArchive& in) override;
