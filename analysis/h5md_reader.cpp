@@ -25,6 +25,7 @@ constexpr const char* kPosition = "/particles/all/position/value";
 constexpr const char* kVelocity = "/particles/all/velocity/value";
 constexpr const char* kRadius = "/particles/all/radius/value";
 constexpr const char* kId = "/particles/all/id/value";
+constexpr const char* kPresent = "/particles/all/present/value";
 constexpr const char* kObservableStep = "/observables/kinetic_energy/step";
 
 template <class T>
@@ -276,9 +277,6 @@ void validate_frame(const Frame<D>& frame, const std::filesystem::path& file, st
   if (!std::isfinite(frame.time)) throw bad("its time is not finite");
   for (std::size_t k = 0; k < frame.id.size(); ++k) {
     const std::string row = "row " + std::to_string(k) + " (grain id " + std::to_string(frame.id[k]) + ")";
-    if (frame.id[k] < 0) throw bad(row + ": a negative id among the grains");
-    if (k > 0 && frame.id[k] <= frame.id[k - 1])
-      throw bad(row + ": ids are not increasing (granjet stores each frame sorted by id)");
     if (!frame.position[k].allFinite() || !frame.velocity[k].allFinite())
       throw bad(row + ": a position or velocity that is not finite");
     if (!(std::isfinite(frame.radius[k]) && frame.radius[k] > 0.0))
@@ -302,23 +300,40 @@ Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
     throw std::runtime_error("'" + file.string() + "' has " + std::to_string(frames) +
                              " frames, no frame " + std::to_string(index));
   }
-  const std::int64_t grains = in.element<std::int64_t>(kFrameGrains, index);
-  const hsize_t max_grains = in.extent(kPosition, 3)[1];
-  if (grains < 0 || static_cast<hsize_t>(grains) > max_grains) {
-    in.fail("use the grain count " + std::to_string(grains) + " in", kFrameGrains);
-  }
-  const auto n = static_cast<hsize_t>(grains);
+  // Each grain id has its row; the rows of removed grains hold id -1 and are left out.
+  const hsize_t rows = in.extent(kPosition, 3)[1];
+  std::vector<GrainId> id(rows);
+  std::vector<Vec<D>> position(rows), velocity(rows);
+  std::vector<double> radius(rows);
+  in.read(kId, {index, 0}, {1, rows}, H5T_NATIVE_INT64, id.data());
+  in.read(kPosition, {index, 0, 0}, {1, rows, D}, H5T_NATIVE_DOUBLE, position.data());
+  in.read(kVelocity, {index, 0, 0}, {1, rows, D}, H5T_NATIVE_DOUBLE, velocity.data());
+  in.read(kRadius, {index, 0}, {1, rows}, H5T_NATIVE_DOUBLE, radius.data());
   Frame<D> frame;
   frame.step = in.element<std::int64_t>(kFrameStep, index);
   frame.time = in.element<double>(kFrameTime, index);
-  frame.id.resize(n);
-  frame.position.resize(n);
-  frame.velocity.resize(n);
-  frame.radius.resize(n);
-  in.read(kId, {index, 0}, {1, n}, H5T_NATIVE_INT64, frame.id.data());
-  in.read(kPosition, {index, 0, 0}, {1, n, D}, H5T_NATIVE_DOUBLE, frame.position.data());
-  in.read(kVelocity, {index, 0, 0}, {1, n, D}, H5T_NATIVE_DOUBLE, frame.velocity.data());
-  in.read(kRadius, {index, 0}, {1, n}, H5T_NATIVE_DOUBLE, frame.radius.data());
+  // Files written before granjet kept a row per id (no present list) hold each frame's grains
+  // in rows 0..n-1, sorted by id.
+  const bool row_per_id = in.exists(kPresent);
+  for (hsize_t r = 0; r < rows; ++r) {
+    if (id[r] == -1) continue;
+    if (row_per_id ? id[r] != static_cast<GrainId>(r)
+                   : id[r] < 0 || (r > 0 && id[r] <= id[r - 1]))
+      throw InputError(file.string(), "frame " + std::to_string(index) + ": row " +
+                                          std::to_string(r) + " holds grain id " +
+                                          std::to_string(id[r]) +
+                                          (row_per_id ? " (granjet stores grain r in row r, or -1)"
+                                                      : " (ids must increase)"));
+    frame.id.push_back(id[r]);
+    frame.position.push_back(position[r]);
+    frame.velocity.push_back(velocity[r]);
+    frame.radius.push_back(radius[r]);
+  }
+  const std::int64_t grains = in.element<std::int64_t>(kFrameGrains, index);
+  if (grains != static_cast<std::int64_t>(frame.id.size()))
+    in.fail("find the " + std::to_string(frame.id.size()) + " grains of frame " +
+                std::to_string(index) + " counted in",
+            kFrameGrains);
   validate_frame(frame, file, index);
   return frame;
 }

@@ -15,6 +15,7 @@
 #include "analysis/h5md_reader.hpp"
 #include "analysis/hdf5_handle.hpp"
 #include "analysis/xdmf_sidecar.hpp"
+#include "core/plate_face.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -22,6 +23,8 @@ namespace {
 // Grains per chunk along the grain axis: large enough for efficient I/O, small enough that the
 // chunks beyond a shrunken grain count are never allocated.
 constexpr hsize_t kChunkGrains = 16384;
+// Contacts per chunk along the contact axis, which grows with the most contacts of a frame.
+constexpr hsize_t kChunkContacts = 4096;
 // Rows per chunk of the scalar time series (step, time, observables).
 constexpr hsize_t kChunkRows = 1024;
 
@@ -39,12 +42,19 @@ namespace detail {
 
 class H5mdFile {
  public:
-  // One grain per row, sorted by id so that frames line up for analysis.
+  // One frame: every grain in the row of its id (fill values in the rows of removed grains),
+  // the rows present, and the touching pairs.
   struct FrameRows {
-    std::vector<GrainId> id;
-    std::vector<double> position;  // row-major [grains][dimension]
+    std::vector<GrainId> id;        // [rows]
+    std::vector<GrainId> present;   // ascending
+    std::vector<double> position;   // row-major [rows][dimension]
     std::vector<double> velocity;
     std::vector<double> radius;
+    std::vector<double> omega;      // [rows][spin width], when stored
+    std::vector<double> force;      // [rows][dimension], when stored
+    std::vector<GrainId> pairs;     // [contacts][2], when stored
+    std::vector<double> normal_force, tangential_force;  // [contacts][dimension]
+    std::vector<double> overlap;                         // [contacts]
   };
 
   H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dimension,
@@ -55,6 +65,14 @@ class H5mdFile {
   void write_checkpoint(StateArchive archive);
   void replace_scene(const std::string& scene_ini);
   void write_frame(std::int64_t step, double time, const FrameRows& rows);
+  std::size_t rows() const { return max_grains_; }
+  // Which optional per-frame data the file stores.
+  struct Content {
+    bool omega, force, contacts;
+  };
+  Content content() const {
+    return {sets_.omega.has_value(), sets_.force.has_value(), sets_.pairs.has_value()};
+  }
   void write_observables(std::int64_t step, double time, const Observables& obs);
   std::filesystem::path complete();
   void publish();
@@ -68,9 +86,13 @@ class H5mdFile {
     std::vector<hsize_t> extent;
   };
   struct Datasets {
-    Dataset frame_step, frame_time, frame_grains, position, velocity, radius, id;
+    Dataset frame_step, frame_time, frame_grains, frame_contacts, dt, position, velocity, radius,
+        id, present;
+    std::optional<Dataset> omega, force, box, pairs, normal_force, tangential_force, overlap;
     Dataset observable_step, observable_time, grains;
     std::array<Dataset, kEnergies.size()> energies;
+    // Every series with one row per frame, for truncation on resume.
+    std::vector<Dataset*> per_frame();
   };
 
   H5Handle dataspace(const std::vector<hsize_t>& dims) const;  // scalar when dims is empty
@@ -85,9 +107,20 @@ class H5mdFile {
   // H5MD lets elements sampled together share one step and one time dataset.
   void share_step_and_time(const std::string& from, const std::string& to) const;
   void append(Dataset& set, hsize_t valid, hid_t type, const void* data);
+  // Widens the second axis of `set` (the contacts of a frame) to at least `width`.
+  void widen(Dataset& set, hsize_t width);
+  void write_unit(const std::string& dataset, const char* quantity) const;
   void require_open() const;
+  XdmfLayout layout() const {
+    return {dimension_, max_grains_, sets_.omega.has_value(), sets_.force.has_value(),
+            sets_.pairs ? sets_.pairs->extent[1] : 0};
+  }
   void close();
   Dataset open_series(const std::string& name) const;
+  // Whether `name` exists, with every group on the way.
+  bool exists(const std::string& name) const;
+  void read_all(const Dataset& set, hid_t type, void* out) const;
+  void read_first_row(const Dataset& set, double* out) const;
   void truncate(Dataset& set, hsize_t rows);
 
   std::filesystem::path path_;
@@ -95,11 +128,50 @@ class H5mdFile {
   std::optional<FileLock> lock_;  // from before the .partial is truncated until it is renamed
   int dimension_;
   hsize_t max_grains_;
+  UnitLabels units_ = UnitLabels::kMdAnalysis;
   H5Handle file_;  // declared before the datasets, so it is closed after them
   H5Handle link_props_;
   Datasets sets_;
   std::vector<XdmfFrame> frames_;
+  std::vector<double> box_;      // periodic edges, stored with every frame
+  double frame_interval_ = 1.0;  // the dt observable
 };
+
+// The unit attribute of `dataset` for `quantity`.
+void H5mdFile::write_unit(const std::string& dataset, const char* quantity) const {
+  struct Label {
+    const char* quantity;
+    const char* mdanalysis;  // MDAnalysis's base unit, standing for the reduced one at factor 1
+    const char* reduced;     // H5MD unit string of the reduced unit
+  };
+  static constexpr std::array<Label, 6> kLabels = {{
+      {"length", "Angstrom", "d"},
+      {"time", "ps", "d u0-1"},
+      {"velocity", "Angstrom ps-1", "u0"},
+      {"angular velocity", "ps-1", "u0 d-1"},
+      {"force", "kJ mol-1 Angstrom-1", "m u0+2 d-1"},
+      {"energy", "kJ mol-1", "m u0+2"},
+  }};
+  for (const Label& label : kLabels)
+    if (std::string_view(label.quantity) == quantity) {
+      // Variable-length, unlike H5MD's fixed-length strings: h5py reads those as bytes, which
+      // MDAnalysis does not recognise as a unit.
+      const char* unit = units_ == UnitLabels::kReduced ? label.reduced : label.mdanalysis;
+      const H5Handle type = string_type(H5T_VARIABLE);
+      write_attribute(dataset.c_str(), "unit", type.get(), dataspace({}).get(), &unit);
+      return;
+    }
+  throw std::logic_error(std::string("H5mdWriter: no unit for ") + quantity);
+}
+
+std::vector<H5mdFile::Dataset*> H5mdFile::Datasets::per_frame() {
+  std::vector<Dataset*> sets = {&frame_step, &frame_time, &frame_grains, &frame_contacts, &dt,
+                                &position,   &velocity,   &radius,       &id,             &present};
+  for (std::optional<Dataset>* set :
+       {&omega, &force, &box, &pairs, &normal_force, &tangential_force, &overlap})
+    if (set->has_value()) sets.push_back(&**set);
+  return sets;
+}
 
 H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dimension,
                    std::size_t max_grains)
@@ -127,16 +199,28 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   write_string_attribute("/h5md/creator", "name", meta.creator);
   write_string_attribute("/h5md/creator", "version", meta.creator_version);
 
-  // No axis wraps around, so the box needs no edges.
+  // H5MD's units module: the numbers are in reduced units whatever the labels say.
+  create_group("/h5md/modules/units");
+  const std::array<int, 2> units_version = {1, 0};
+  write_attribute("/h5md/modules/units", "version", H5T_NATIVE_INT, dataspace({2}).get(),
+                  units_version.data());
+  write_string_attribute("/h5md/modules/units", "system",
+                         "granjet reduced: length d (grain diameter), velocity u0 (jet speed), "
+                         "time d/u0, mass m (grain mass)");
+
+  const bool periodic = !meta.periodic_box.empty();
+  if (periodic && meta.periodic_box.size() != static_cast<std::size_t>(dimension_))
+    throw std::invalid_argument("H5mdWriter: the periodic box needs one edge per dimension");
   create_group("/particles/all/box");
   write_attribute("/particles/all/box", "dimension", H5T_NATIVE_INT, dataspace({}).get(),
                   &dimension_);
   std::string boundary;
-  for (int d = 0; d < dimension_; ++d) boundary.append("none", 5);  // with its NUL
-  write_attribute("/particles/all/box", "boundary", string_type(5).get(),
+  for (int d = 0; d < dimension_; ++d)
+    boundary.append(periodic ? "periodic" : "none", 9);  // padded with NULs to 9
+  write_attribute("/particles/all/box", "boundary", string_type(9).get(),
                   dataspace({static_cast<hsize_t>(dimension_)}).get(), boundary.data());
 
-  // Rows past a frame's grain count keep these fill values; -1 is H5MD's "no particle" id.
+  // Rows of removed grains keep these fill values; -1 is H5MD's "no particle" id.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const GrainId no_grain = -1;
   const hsize_t g = max_grains_;
@@ -148,14 +232,50 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   sets_.velocity = create_series(all + "velocity/value", H5T_NATIVE_DOUBLE, {g, d}, &nan);
   sets_.radius = create_series(all + "radius/value", H5T_NATIVE_DOUBLE, {g}, &nan);
   sets_.id = create_series(all + "id/value", H5T_NATIVE_INT64, {g}, &no_grain);
-  sets_.frame_grains =
-      create_series("/observables/frame_grains/value", H5T_NATIVE_INT64, {}, nullptr);
-  for (const std::string& element :
-       {all + "velocity", all + "radius", all + "id", std::string("/observables/frame_grains")}) {
-    share_step_and_time(all + "position", element);
+  sets_.present = create_series(all + "present/value", H5T_NATIVE_INT64, {g}, &no_grain);
+  std::vector<std::string> per_frame = {all + "velocity", all + "radius", all + "id",
+                                        all + "present"};
+  if (meta.omega) {
+    const std::vector<hsize_t> shape = dimension_ == 3 ? std::vector<hsize_t>{g, 3} : std::vector<hsize_t>{g};
+    sets_.omega = create_series(all + "omega/value", H5T_NATIVE_DOUBLE, shape, &nan);
+    per_frame.push_back(all + "omega");
   }
-
+  if (meta.force) {
+    sets_.force = create_series(all + "force/value", H5T_NATIVE_DOUBLE, {g, d}, &nan);
+    per_frame.push_back(all + "force");
+  }
+  if (periodic) {
+    // H5MD's triclinic form (a diagonal matrix for a cuboid), the one MDAnalysis reads.
+    sets_.box = create_series(all + "box/edges/value", H5T_NATIVE_DOUBLE, {d, d}, nullptr);
+    per_frame.push_back(all + "box/edges");
+    box_ = meta.periodic_box;
+  }
   const std::string obs = "/observables/";
+  sets_.frame_grains = create_series(obs + "frame_grains/value", H5T_NATIVE_INT64, {}, nullptr);
+  sets_.frame_contacts = create_series(obs + "frame_contacts/value", H5T_NATIVE_INT64, {}, nullptr);
+  sets_.dt = create_series(obs + "dt/value", H5T_NATIVE_DOUBLE, {}, nullptr);
+  frame_interval_ = meta.frame_interval;
+  for (const char* name : {"frame_grains", "frame_contacts", "dt"}) per_frame.push_back(obs + name);
+  if (meta.contacts) {
+    // Pairs of ids of /particles/all (H5MD 1.1 tuples list); the width grows with the most
+    // contacts any frame has.
+    sets_.pairs = create_series("/connectivity/contacts/value", H5T_NATIVE_INT64, {0, 2}, &no_grain);
+    hobj_ref_t group{};
+    ctx_.check(H5Rcreate(&group, file_.get(), "/particles/all", H5R_OBJECT, -1), "reference",
+               "/particles/all");
+    write_attribute("/connectivity/contacts", "particles_group", H5T_STD_REF_OBJ,
+                    dataspace({}).get(), &group);
+    sets_.normal_force =
+        create_series("/contacts/normal_force/value", H5T_NATIVE_DOUBLE, {0, d}, &nan);
+    sets_.tangential_force =
+        create_series("/contacts/tangential_force/value", H5T_NATIVE_DOUBLE, {0, d}, &nan);
+    sets_.overlap = create_series("/contacts/overlap/value", H5T_NATIVE_DOUBLE, {0}, &nan);
+    for (const char* name : {"/connectivity/contacts", "/contacts/normal_force",
+                             "/contacts/tangential_force", "/contacts/overlap"})
+      per_frame.emplace_back(name);
+  }
+  for (const std::string& element : per_frame) share_step_and_time(all + "position", element);
+
   sets_.observable_step =
       create_series(obs + kEnergies[0] + "/step", H5T_NATIVE_INT64, {}, nullptr);
   sets_.observable_time =
@@ -167,6 +287,19 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   }
   sets_.grains = create_series(obs + "grains/value", H5T_NATIVE_INT64, {}, nullptr);
   share_step_and_time(obs + kEnergies[0], obs + "grains");
+
+  units_ = meta.unit_labels;
+  for (const Dataset* set : {&sets_.position, &sets_.radius}) write_unit(set->name, "length");
+  for (const Dataset* set : {&sets_.frame_time, &sets_.dt, &sets_.observable_time})
+    write_unit(set->name, "time");
+  write_unit(sets_.velocity.name, "velocity");
+  for (const Dataset& set : sets_.energies) write_unit(set.name, "energy");
+  if (sets_.box) write_unit(sets_.box->name, "length");
+  if (sets_.omega) write_unit(sets_.omega->name, "angular velocity");
+  if (sets_.force) write_unit(sets_.force->name, "force");
+  if (sets_.overlap) write_unit(sets_.overlap->name, "length");
+  for (const std::optional<Dataset>* set : {&sets_.normal_force, &sets_.tangential_force})
+    if (*set) write_unit((*set)->name, "force");
 
   create_group("/parameters/granjet");
   write_string_attribute("/parameters/granjet", "backend", meta.backend);
@@ -207,7 +340,20 @@ H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
   sets_.velocity = open_series(all + "velocity/value");
   sets_.radius = open_series(all + "radius/value");
   sets_.id = open_series(all + "id/value");
+  sets_.present = open_series(all + "present/value");
   sets_.frame_grains = open_series(obs + "frame_grains/value");
+  sets_.frame_contacts = open_series(obs + "frame_contacts/value");
+  sets_.dt = open_series(obs + "dt/value");
+  const auto optional = [&](std::optional<Dataset>& set, const std::string& name) {
+    if (exists(name)) set = open_series(name);
+  };
+  optional(sets_.omega, all + "omega/value");
+  optional(sets_.force, all + "force/value");
+  optional(sets_.box, all + "box/edges/value");
+  optional(sets_.pairs, "/connectivity/contacts/value");
+  optional(sets_.normal_force, "/contacts/normal_force/value");
+  optional(sets_.tangential_force, "/contacts/tangential_force/value");
+  optional(sets_.overlap, "/contacts/overlap/value");
   sets_.observable_step = open_series(obs + kEnergies[0] + "/step");
   sets_.observable_time = open_series(obs + kEnergies[0] + "/time");
   for (std::size_t k = 0; k < kEnergies.size(); ++k)
@@ -218,24 +364,28 @@ H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
   const auto rows = static_cast<hsize_t>(checkpoint.integer("writer/observable_rows"));
   if (frames > sets_.frame_step.extent[0] || rows > sets_.observable_step.extent[0])
     ctx_.fail("resume at", "a checkpoint that counts more frames than the file holds");
-  for (Dataset* set : {&sets_.frame_step, &sets_.frame_time, &sets_.position, &sets_.velocity,
-                       &sets_.radius, &sets_.id, &sets_.frame_grains})
-    truncate(*set, frames);
+  for (Dataset* set : sets_.per_frame()) truncate(*set, frames);
   for (Dataset* set : {&sets_.observable_step, &sets_.observable_time, &sets_.grains})
     truncate(*set, rows);
   for (Dataset& set : sets_.energies) truncate(set, rows);
-  std::vector<double> time(frames);
-  std::vector<std::int64_t> grains(frames);
+  std::vector<double> time(frames), interval(frames);
+  std::vector<std::int64_t> grains(frames), contacts(frames);
   if (frames > 0) {
-    ctx_.check(H5Dread(sets_.frame_time.handle.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
-                       H5P_DEFAULT, time.data()),
-               "read", sets_.frame_time.name);
-    ctx_.check(H5Dread(sets_.frame_grains.handle.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL,
-                       H5P_DEFAULT, grains.data()),
-               "read", sets_.frame_grains.name);
+    read_all(sets_.frame_time, H5T_NATIVE_DOUBLE, time.data());
+    read_all(sets_.dt, H5T_NATIVE_DOUBLE, interval.data());
+    read_all(sets_.frame_grains, H5T_NATIVE_INT64, grains.data());
+    read_all(sets_.frame_contacts, H5T_NATIVE_INT64, contacts.data());
+    frame_interval_ = interval[0];
+  }
+  if (sets_.box) {
+    if (frames == 0) ctx_.fail("resume at", "a checkpoint before the first frame");
+    std::vector<double> edges(dimension_ * dimension_);
+    read_first_row(*sets_.box, edges.data());
+    for (int k = 0; k < dimension_; ++k) box_.push_back(edges[k * (dimension_ + 1)]);
   }
   for (hsize_t k = 0; k < frames; ++k)
-    frames_.push_back({time[k], static_cast<std::size_t>(grains[k])});
+    frames_.push_back({time[k], static_cast<std::size_t>(grains[k]),
+                       static_cast<std::size_t>(contacts[k])});
   write_string_attribute("/parameters/granjet", "status", "running");
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
 }
@@ -255,6 +405,29 @@ H5mdFile::Dataset H5mdFile::open_series(const std::string& name) const {
   std::vector<hsize_t> extent(rank);
   ctx_.check(H5Sget_simple_extent_dims(space.get(), extent.data(), nullptr), "query", name);
   return {std::move(set), name, std::move(extent)};
+}
+
+bool H5mdFile::exists(const std::string& name) const {
+  for (std::size_t slash = name.find('/', 1);; slash = name.find('/', slash + 1)) {
+    if (H5Lexists(file_.get(), name.substr(0, slash).c_str(), H5P_DEFAULT) <= 0) return false;
+    if (slash == std::string::npos) return true;
+  }
+}
+
+void H5mdFile::read_all(const Dataset& set, hid_t type, void* out) const {
+  ctx_.check(H5Dread(set.handle.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out), "read", set.name);
+}
+
+void H5mdFile::read_first_row(const Dataset& set, double* out) const {
+  std::vector<hsize_t> start(set.extent.size(), 0), count = set.extent;
+  count[0] = 1;
+  const H5Handle file_space = ctx_.own(H5Dget_space(set.handle.get()), H5Sclose, "query", set.name);
+  ctx_.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
+                                 count.data(), nullptr),
+             "select a row of", set.name);
+  ctx_.check(H5Dread(set.handle.get(), H5T_NATIVE_DOUBLE, dataspace(count).get(), file_space.get(),
+                     H5P_DEFAULT, out),
+             "read", set.name);
 }
 
 void H5mdFile::truncate(Dataset& set, hsize_t rows) {
@@ -294,22 +467,39 @@ void H5mdFile::write_checkpoint(StateArchive archive) {
 
 void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows) {
   require_open();
-  const hsize_t n = rows.id.size();
-  if (n > max_grains_) {
-    throw std::invalid_argument("H5mdWriter: " + std::to_string(n) + " grains exceed max_grains " +
-                                std::to_string(max_grains_));
-  }
+  const hsize_t n = rows.present.size();
+  const hsize_t contacts = rows.overlap.size();
   const auto grains = static_cast<std::int64_t>(n);
+  const auto contact_count = static_cast<std::int64_t>(contacts);
   append(sets_.frame_step, 1, H5T_NATIVE_INT64, &step);
   append(sets_.frame_time, 1, H5T_NATIVE_DOUBLE, &time);
   append(sets_.frame_grains, 1, H5T_NATIVE_INT64, &grains);
-  append(sets_.position, n, H5T_NATIVE_DOUBLE, rows.position.data());
-  append(sets_.velocity, n, H5T_NATIVE_DOUBLE, rows.velocity.data());
-  append(sets_.radius, n, H5T_NATIVE_DOUBLE, rows.radius.data());
-  append(sets_.id, n, H5T_NATIVE_INT64, rows.id.data());
+  append(sets_.frame_contacts, 1, H5T_NATIVE_INT64, &contact_count);
+  append(sets_.dt, 1, H5T_NATIVE_DOUBLE, &frame_interval_);
+  append(sets_.position, max_grains_, H5T_NATIVE_DOUBLE, rows.position.data());
+  append(sets_.velocity, max_grains_, H5T_NATIVE_DOUBLE, rows.velocity.data());
+  append(sets_.radius, max_grains_, H5T_NATIVE_DOUBLE, rows.radius.data());
+  append(sets_.id, max_grains_, H5T_NATIVE_INT64, rows.id.data());
+  append(sets_.present, n, H5T_NATIVE_INT64, rows.present.data());
+  if (sets_.omega) append(*sets_.omega, max_grains_, H5T_NATIVE_DOUBLE, rows.omega.data());
+  if (sets_.force) append(*sets_.force, max_grains_, H5T_NATIVE_DOUBLE, rows.force.data());
+  if (sets_.box) {
+    std::vector<double> edges(dimension_ * dimension_, 0.0);
+    for (int k = 0; k < dimension_; ++k) edges[k * (dimension_ + 1)] = box_[k];
+    append(*sets_.box, dimension_, H5T_NATIVE_DOUBLE, edges.data());
+  }
+  if (sets_.pairs) {
+    for (Dataset* set : {&*sets_.pairs, &*sets_.normal_force, &*sets_.tangential_force,
+                         &*sets_.overlap})
+      widen(*set, contacts);
+    append(*sets_.pairs, contacts, H5T_NATIVE_INT64, rows.pairs.data());
+    append(*sets_.normal_force, contacts, H5T_NATIVE_DOUBLE, rows.normal_force.data());
+    append(*sets_.tangential_force, contacts, H5T_NATIVE_DOUBLE, rows.tangential_force.data());
+    append(*sets_.overlap, contacts, H5T_NATIVE_DOUBLE, rows.overlap.data());
+  }
   // A run killed later still leaves this frame readable.
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
-  frames_.push_back({time, n});
+  frames_.push_back({time, n, contacts});
 }
 
 void H5mdFile::write_observables(std::int64_t step, double time, const Observables& obs) {
@@ -331,14 +521,14 @@ std::filesystem::path H5mdFile::complete() {
     if (H5Lexists(file_.get(), checkpoint, H5P_DEFAULT) > 0)
       ctx_.check(H5Ldelete(file_.get(), checkpoint, H5P_DEFAULT), "remove", checkpoint);
   write_string_attribute("/parameters/granjet", "status", "complete");
+  const XdmfLayout sidecar = layout();
   close();
   // An ensemble file holds no frames: nothing to draw, and a sidecar of frames that an earlier
   // file of this name held would show what is gone.
   if (frames_.empty())
     std::filesystem::remove(xdmf_path_for(path_));
   else
-    write_xdmf_sidecar(xdmf_path_for(path_), path_.filename().string(), dimension_, max_grains_,
-                       frames_);
+    write_xdmf_sidecar(xdmf_path_for(path_), path_.filename().string(), sidecar, frames_);
   return ctx_.file();
 }
 
@@ -399,8 +589,9 @@ H5mdFile::Dataset H5mdFile::create_series(std::string name, hid_t type,
   std::vector<hsize_t> chunk = {row_shape.empty() ? kChunkRows : 1};
   for (hsize_t width : row_shape) {
     extent.push_back(width);
-    max.push_back(width);
-    chunk.push_back(std::min(width, kChunkGrains));
+    // Width 0: the axis grows (widen) with the data, the contacts of a frame.
+    max.push_back(width == 0 ? H5S_UNLIMITED : width);
+    chunk.push_back(width == 0 ? kChunkContacts : std::min(width, kChunkGrains));
   }
   const int rank = static_cast<int>(extent.size());
   const H5Handle space = ctx_.own(H5Screate_simple(rank, extent.data(), max.data()), H5Sclose,
@@ -415,6 +606,12 @@ H5mdFile::Dataset H5mdFile::create_series(std::string name, hid_t type,
                                      link_props_.get(), props.get(), H5P_DEFAULT),
                           H5Dclose, "create", name);
   return {std::move(set), std::move(name), std::move(extent)};
+}
+
+void H5mdFile::widen(Dataset& set, hsize_t width) {
+  if (set.extent[1] >= width) return;
+  set.extent[1] = width;
+  ctx_.check(H5Dset_extent(set.handle.get(), set.extent.data()), "widen", set.name);
 }
 
 void H5mdFile::share_step_and_time(const std::string& from, const std::string& to) const {
@@ -484,22 +681,52 @@ template <int D>
 H5mdWriter<D>::~H5mdWriter() = default;
 
 template <int D>
-void H5mdWriter<D>::write_frame(std::int64_t step, double time, const Particles<D>& particles) {
+void H5mdWriter<D>::write_frame(std::int64_t step, double time, const Particles<D>& particles,
+                                const ForceSample<D>* forces) {
+  const std::size_t rows = file_->rows();
   const auto ids = particles.id();
-  std::vector<std::size_t> order(ids.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
-  detail::H5mdFile::FrameRows rows;
-  for (std::size_t k : order) {
-    const Vec<D>& x = particles.position()[k];
-    const Vec<D>& v = particles.velocity()[k];
-    rows.id.push_back(ids[k]);
-    rows.position.insert(rows.position.end(), x.data(), x.data() + D);
-    rows.velocity.insert(rows.velocity.end(), v.data(), v.data() + D);
-    rows.radius.push_back(particles.radius()[k]);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  constexpr std::size_t kSpin = D == 3 ? 3 : 1;
+  detail::H5mdFile::FrameRows f;
+  f.id.assign(rows, -1);
+  f.position.assign(rows * D, nan);
+  f.velocity.assign(rows * D, nan);
+  f.radius.assign(rows, nan);
+  const auto& content = file_->content();
+  if (content.omega) f.omega.assign(rows * kSpin, nan);
+  if (content.force) f.force.assign(rows * D, nan);
+  if ((content.force || content.contacts) && forces == nullptr)
+    throw std::logic_error("H5mdWriter: this file stores forces; write_frame needs them");
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const GrainId r = ids[k];
+    if (r < 0 || static_cast<std::size_t>(r) >= rows)
+      throw std::invalid_argument("H5mdWriter: grain id " + std::to_string(r) +
+                                  " has no row (ids 0.." + std::to_string(rows - 1) + ")");
+    f.id[r] = r;
+    std::copy_n(particles.position()[k].data(), D, &f.position[r * D]);
+    std::copy_n(particles.velocity()[k].data(), D, &f.velocity[r * D]);
+    f.radius[r] = particles.radius()[k];
+    if (content.omega) {
+      if constexpr (D == 3)
+        std::copy_n(particles.spin()[k].data(), 3, &f.omega[r * 3]);
+      else
+        f.omega[r] = particles.spin()[k];
+    }
+    if (content.force) std::copy_n(forces->total[k].data(), D, &f.force[r * D]);
   }
-  file_->write_frame(step, time, rows);
+  for (std::size_t r = 0; r < rows; ++r)
+    if (f.id[r] >= 0) f.present.push_back(f.id[r]);
+  if (content.contacts)
+    // Pairs only: a contact with the plate (j = kPlateId) has no partner row to draw.
+    for (const auto& c : forces->contacts) {
+      if (c.j == kPlateId) continue;
+      f.pairs.insert(f.pairs.end(), {c.i, c.j});
+      f.normal_force.insert(f.normal_force.end(), c.normal_force.data(), c.normal_force.data() + D);
+      f.tangential_force.insert(f.tangential_force.end(), c.tangential_force.data(),
+                                c.tangential_force.data() + D);
+      f.overlap.push_back(c.overlap);
+    }
+  file_->write_frame(step, time, f);
 }
 
 template <int D>

@@ -1,6 +1,20 @@
 // Writes a run as an H5MD 1.1 file (https://www.nongnu.org/h5md/h5md.html) plus an XDMF sidecar
 // for ParaView. The file is written as <path>.partial and renamed to <path> only by finish(), so
 // a file under its final name always holds a complete run.
+//
+// Grain data keep one row per grain id for the whole run (row r holds grain r), so that a row
+// means the same grain in every frame; a grain removed during the run keeps its row with the
+// fill values (id -1, H5MD's mark of a particle that does not exist; NaN elsewhere):
+//
+//   /particles/all/{position,velocity}/value [frames][rows][D], radius/value, id/value [frames][rows]
+//                  present/value [frames][rows]   the rows present, ascending, then -1
+//                  (omega/value [frames][rows](x3 in 3D), force/value [frames][rows][D])
+//                  box  dimension, boundary; with a periodic box edges/value [frames][D][D]
+//   /connectivity/contacts/value [frames][C][2]   touching grain pairs (grain ids), then -1
+//   /contacts/{normal_force,tangential_force}/value [frames][C][D], overlap/value [frames][C]
+//   /observables/{kinetic_energy,...,frame_grains,frame_contacts,dt}/value, one row per frame
+//
+// Every time series shares the frames' step and time (hard links). Units: RunMetadata's labels.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +24,8 @@
 #include <vector>
 
 #include "core/particles.hpp"
+#include "core/scene.hpp"
+#include "core/simulator.hpp"
 #include "core/state_archive.hpp"
 
 namespace granjet::analysis {
@@ -21,6 +37,16 @@ struct RunMetadata {
   std::string backend;          // "soft_dem" | "event_driven"
   std::string scene_ini;        // the full resolved scene as INI text, so the run can be redone
   int dimension = 3;            // must match the writer's D
+  // What each frame stores beyond position, velocity, radius and id (OutputSpec), and the
+  // unit attributes.
+  bool omega = false;
+  bool force = false;
+  bool contacts = false;
+  UnitLabels unit_labels = UnitLabels::kMdAnalysis;
+  // The edges of the periodic box (gas scenes); empty: no axis wraps around.
+  std::vector<double> periodic_box;
+  // Sim time between stored frames, stored as the observable dt (MDAnalysis's Timestep.dt).
+  double frame_interval = 1.0;
   // An ensemble file (no frames; /fields and /analysis combined over seeds): its member runs'
   // files, relative to its directory.
   std::vector<std::string> members;
@@ -42,8 +68,8 @@ template <int D>
 class H5mdWriter {
  public:
   // Creates `path` + ".partial" (never `path` itself) and holds a lock on it until publish().
-  // max_grains (> 0) is the largest number of grains any frame will hold: grains may only be
-  // removed during a run. Throws FileBusyError (analysis/file_lock.hpp) when another run writes
+  // max_grains (> 0) is the number of grain ids 0..max_grains-1, one row each: grains may only
+  // be removed during a run. Throws FileBusyError (analysis/file_lock.hpp) when another run writes
   // the same file, std::runtime_error naming the file when it cannot be created.
   H5mdWriter(std::filesystem::path path, const RunMetadata& meta, std::size_t max_grains);
   // Reopens `path` + ".partial" at its checkpoint (read_checkpoint): frames and observables
@@ -57,8 +83,10 @@ class H5mdWriter {
   // status "running" and every frame written so far.
   ~H5mdWriter();
 
-  // Stores the grains sorted by id and flushes, so the frame survives a later crash.
-  void write_frame(std::int64_t step, double time, const Particles<D>& particles);
+  // Stores each grain in the row of its id and flushes, so the frame survives a later crash.
+  // `forces` (the same instant's) is required when RunMetadata asked for force or contacts.
+  void write_frame(std::int64_t step, double time, const Particles<D>& particles,
+                   const ForceSample<D>* forces = nullptr);
   // Appends one row; it becomes durable with the next frame's flush or at the end.
   void write_observables(std::int64_t step, double time, const Observables& obs);
   // Stores the run's state (with the count of frames and observables so far) as /checkpoint,

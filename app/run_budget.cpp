@@ -156,8 +156,15 @@ void check_duration(const Scene& s, const std::string& backend) {
                      s.analysis.sample_interval,
                  kMaxSamples, "analysis.sample_interval",
                  "the analysis samples (window / analysis.sample_interval)");
-  // Every frame stores id, radius, position and velocity of every grain.
-  const double frame_bytes = estimated_grains(s) * (2.0 * s.dimension + 2.0) * 8.0;
+  // Every frame stores id, present, radius, position and velocity of every grain, and what
+  // output.fields adds: omega, force, and the contacts, at most one per grain pair of a dense
+  // packing (3 per grain in 3D, 2 in 2D), each two ids, two force vectors and an overlap.
+  const double d = s.dimension;
+  double per_grain = 2.0 * d + 3.0;
+  if (s.output.omega) per_grain += d == 3 ? 3.0 : 1.0;
+  if (s.output.force) per_grain += d;
+  if (s.output.contacts) per_grain += (d == 3 ? 3.0 : 2.0) * (3.0 + 2.0 * d);
+  const double frame_bytes = estimated_grains(s) * per_grain * 8.0;
   if (frames * frame_bytes > s.output.max_bytes)
     throw InputError("output.max_bytes",
                      number(frames) + " frames of " + number(estimated_grains(s)) +

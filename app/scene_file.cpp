@@ -1,6 +1,7 @@
 #include "app/scene_file.hpp"
 
 #include <boost/program_options.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -124,6 +125,41 @@ Key choice_key(std::string name, std::string meaning, Member member,
             for (const auto& [word, value] : choices)
               if (member(s) == value) return word;
             return std::string("?");
+          }};
+}
+
+// output.fields: a list of the per-grain data to store; position, velocity, radius and id are
+// required (the analysis reads them back), omega, force and contacts are optional.
+Key output_fields_key() {
+  static const std::vector<std::string> required = {"position", "velocity", "radius", "id"};
+  const std::string allowed = "position, velocity, radius, id (all required) and any of omega, "
+                              "force, contacts";
+  return {"output.fields", "per-grain data in each frame; allowed " + allowed,
+          [allowed](Scene& s, const std::string& text) {
+            std::set<std::string> seen;
+            std::string word;
+            for (std::istringstream in(text); std::getline(in, word, ',');) {
+              word.erase(0, word.find_first_not_of(" \t"));
+              word.erase(word.find_last_not_of(" \t") + 1);
+              const bool known = word == "omega" || word == "force" || word == "contacts" ||
+                                 std::find(required.begin(), required.end(), word) != required.end();
+              if (!known) throw InputError("output.fields", "'" + word + "' is not one of " + allowed);
+              if (!seen.insert(word).second)
+                throw InputError("output.fields", "'" + word + "' is listed twice");
+            }
+            for (const std::string& r : required)
+              if (!seen.count(r))
+                throw InputError("output.fields", "'" + text + "' lacks " + r + "; allowed " + allowed);
+            s.output.omega = seen.count("omega") > 0;
+            s.output.force = seen.count("force") > 0;
+            s.output.contacts = seen.count("contacts") > 0;
+          },
+          [](const Scene& s) {
+            std::string list = "position, velocity, radius, id";
+            if (s.output.omega) list += ", omega";
+            if (s.output.force) list += ", force";
+            if (s.output.contacts) list += ", contacts";
+            return list;
           }};
 }
 
@@ -272,6 +308,14 @@ const std::vector<Key>& keys() {
                          "refuse a run whose frames would need more bytes than this (raise it "
                          "for long, dense outputs)",
                          FIELD(output.max_bytes), kPositive));
+    k.push_back(output_fields_key());
+    k.push_back(choice_key<UnitLabels>(
+        "output.unit_labels",
+        "unit attributes of the H5MD datasets, whose numbers are in d, d/u0, u0 and m: "
+        "mdanalysis names them Angstrom, ps, Angstrom ps-1, kJ mol-1 Angstrom-1 at factor 1 "
+        "(MDAnalysis loads the file without flags), reduced names them d, d u0-1, u0, m u0+2 d-1",
+        FIELD(output.unit_labels),
+        {{"mdanalysis", UnitLabels::kMdAnalysis}, {"reduced", UnitLabels::kReduced}}));
     k.push_back(choice_key<bool>("analysis.enabled", "measure the fields of spec §6 during jet runs",
                                  FIELD(analysis.enabled), {{"true", true}, {"false", false}}));
     k.push_back(real_key("analysis.window_start", "start of the time average",

@@ -144,10 +144,20 @@ struct AnalysisSpec {
   double scatter_radius = 0.0;  // where grains count as scattered; 0: from the target (run_analysis)
 };
 
+// The unit attributes of the H5MD output: MDAnalysis reads only molecular unit names, so
+// kMdAnalysis labels d, d/u0, u0 and m u0^2/d with its base units at factor 1 (Angstrom, ps,
+// ...); kReduced names them as they are.
+enum class UnitLabels { kMdAnalysis, kReduced };
+
 struct OutputSpec {
   double interval = 1.0;  // sim time between stored frames; 0 = initial and final only
   // A run whose frames would take more is refused before it starts (app/run_budget).
   double max_bytes = 8e9;
+  // Per-grain data beyond position, velocity, radius and id (which analysis reads back).
+  bool omega = false;
+  bool force = false;     // total force on each grain
+  bool contacts = false;  // the touching pairs with their forces and overlaps
+  UnitLabels unit_labels = UnitLabels::kMdAnalysis;
 };
 
 struct Scene {

@@ -5,7 +5,7 @@ campaign longer than one sitting carries over to a fresh machine.
     /usr/bin/python3 scripts/campaign_archive.py pack CAMPAIGN_DIR ARCHIVE_DIR [--force]
     /usr/bin/python3 scripts/campaign_archive.py unpack ARCHIVE_DIR CAMPAIGN_DIR [--force]
 
-The run files' frames (/particles) are nearly all of a campaign's bytes, and nothing but FE.1
+The run files' frames (/particles, and /connectivity and /contacts when stored) are nearly all of a campaign's bytes, and nothing but FE.1
 reads them. `pack` writes ARCHIVE_DIR/<group>.tar.xz per group of CAMPAIGN_DIR with every
 complete run (its summary says so) and every ensemble: the .json, .ini and .log as they are and
 the .h5 with /particles emptied: same groups, datasets, types and attributes, zero frames (so
@@ -51,6 +51,7 @@ TAR_SUFFIX = ".tar.xz"
 RUN_SUMMARY = re.compile(r"^.+\.seed\d+\.json$")
 RUN_FILES = (".json", ".ini", ".log", ".h5")
 ENSEMBLE_FILES = (".json", ".h5")
+CONTACT_GROUPS = ("connectivity", "contacts")  # output.fields = contacts: frames too
 XZ_PRESET = 9  # the archive's size matters more than packing time; 9 needs ~700 MB to pack
 SERIES_PARENT, SERIES_NAME = campaign_data.LAYER_A_SERIES.split("/")
 SERIES_NOTE = ("FE.1's T_g(t) in layer (a), -dy < y < 0, inside the analysis window "
@@ -100,6 +101,9 @@ def copy_attributes(source, target):
     for i in range(h5py.h5a.get_num_attrs(source)):
         attribute = h5py.h5a.open(source, index=i)
         file_type = attribute.get_type()
+        if h5py.check_ref_dtype(attribute.dtype) is not None:
+            copy_reference(attribute, source, target)
+            continue
         variable = h5py.check_vlen_dtype(attribute.dtype) is not None or (
             h5py.check_string_dtype(attribute.dtype) is not None
             and h5py.check_string_dtype(attribute.dtype).length is None)
@@ -108,6 +112,18 @@ def copy_attributes(source, target):
         attribute.read(data, mtype=memory_type)
         copy = h5py.h5a.create(target, attribute.name, file_type, attribute.get_space())
         copy.write(data, mtype=memory_type)
+
+
+def copy_reference(attribute, source, target):
+    """An object reference attribute (H5MD's particles_group) points into its own file: the
+    copy points at the object of the same path in the target file, which must exist."""
+    refs = np.empty(attribute.shape, dtype=attribute.dtype)
+    attribute.read(refs)
+    target_file = h5py.h5i.get_file_id(target)
+    copied = np.array([h5py.h5r.create(target_file, h5py.h5r.get_name(ref, source), h5py.h5r.OBJECT)
+                       for ref in refs.flat], dtype=attribute.dtype).reshape(attribute.shape)
+    copy = h5py.h5a.create(target, attribute.name, attribute.get_type(), attribute.get_space())
+    copy.write(copied)
 
 
 def empty_frames(source, target_group, name):
@@ -185,16 +201,21 @@ def strip_frames(source, target):
     series = layer_a_series_of(source)
     with h5py.File(source, "r") as src, h5py.File(target, "w") as dst:
         copy_attributes(src["/"].id, dst["/"].id)
+        made = {}  # frame groups share the frames' step and time
         for key in src:
-            if key == SERIES_PARENT and series is not None:
+            if key == SERIES_PARENT and series is not None or key in CONTACT_GROUPS:
                 continue  # written below
             link = src.get(key, getlink=True)
             if isinstance(link, (h5py.SoftLink, h5py.ExternalLink)):
                 dst[key] = link
             elif key == "particles":
-                copy_without_frames(src[key], dst, key, {})
+                copy_without_frames(src[key], dst, key, made)
             else:
                 h5py.h5o.copy(src.id, key.encode(), dst.id, key.encode())
+        # After /particles, which their step, time and particles_group point at.
+        for key in CONTACT_GROUPS:
+            if key in src:
+                copy_without_frames(src[key], dst, key, made)
         if series is not None:
             times, values, frames = series
             stored = untracked_group(untracked_group(dst, SERIES_PARENT), SERIES_NAME)

@@ -2,6 +2,7 @@
 // name (issue 14): each command now exits 2 naming the key or option, writes nothing and leaves
 // the input as it was, or gives a correct result.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <sys/stat.h>
 
 #include <filesystem>
@@ -126,6 +127,19 @@ TEST_F(BadInput, ValuesThatCrashedHungOrWrappedAreRefused) {
   expect_refused("run " + scene("binary.ini") + " --seeds 1..20000", "at most 10000");
 }
 
+// output.fields asks only for what the backend has, and the run is refused before it writes.
+TEST_F(BadInput, OutputFieldsTheBackendCannotGiveAreRefused) {
+  const std::string jet = "run " + scene("jet3d.ini") + " --set jet.grains=500 --set ";
+  expect_refused(jet + "output.fields=position,velocity,radius,id,contacts --backend event_driven",
+                 "impulses only");
+  expect_refused(jet + "output.fields=position,velocity,radius,id,force --backend event_driven",
+                 "output.fields");
+  expect_refused(jet + "output.fields=position,velocity,radius,id,omega --backend event_driven",
+                 "smooth hard spheres");
+  expect_refused(jet + "output.fields=position,velocity,radius,id,omega --set contact.friction=0",
+                 "contact.friction = 0");
+}
+
 // Valid runs that measure nothing used to end "complete" without a word.
 TEST_F(BadInput, RunsThatMeasureNothingWarn) {
   const std::string out = " --quiet --out " + (dir_ / "w.h5").string() + " --summary " +
@@ -166,10 +180,10 @@ TEST_F(BadInput, AnalyzeRefusesFramesWithImpossibleGrains) {
     const char* message;
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const Damage& d : {Damage{"id", -1, 0.0, 0.5, "negative id"},
-                          Damage{"nan", 5, nan, 0.5, "not finite"},
-                          Damage{"inf", 5, std::numeric_limits<double>::infinity(), 0.5, "not finite"},
-                          Damage{"radius", 5, 0.0, -0.5, "radius"}}) {
+  for (const Damage& d : {Damage{"id", 1, 0.0, 0.5, "holds grain id 2"},
+                          Damage{"nan", 1, nan, 0.5, "not finite"},
+                          Damage{"inf", 1, std::numeric_limits<double>::infinity(), 0.5, "not finite"},
+                          Damage{"radius", 1, 0.0, -0.5, "radius"}}) {
     const fs::path file = dir_ / (std::string(d.name) + ".h5");
     analysis::RunMetadata meta;
     meta.backend = "soft_dem";
@@ -182,10 +196,24 @@ TEST_F(BadInput, AnalyzeRefusesFramesWithImpossibleGrains) {
         Particles<2> p;
         p.add(0, GrainKind::kFree, Vec<2>(1.0, 0.0), Vec<2>(-1.0, 0.0), 0.5, 1.0);
         p.add(d.id, GrainKind::kFree, Vec<2>(d.x, 3.0), Vec<2>(-1.0, 0.0), d.radius, 1.0);
-        p.add(7, GrainKind::kFree, Vec<2>(2.0, 50.0), Vec<2>(0.0, 1.0), 0.5, 1.0);
+        p.add(2, GrainKind::kFree, Vec<2>(2.0, 50.0), Vec<2>(0.0, 1.0), 0.5, 1.0);
         writer.write_frame(frame, frame, p);
       }
       writer.finish();
+    }
+    if (std::string(d.name) == "id") {
+      // A row that claims another grain: the writer never makes one, a damaged file may.
+      const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      const hid_t set = H5Dopen2(h5, "/particles/all/id/value", H5P_DEFAULT);
+      const std::int64_t wrong[3] = {0, 2, 2};
+      const hsize_t start[2] = {0, 0}, count[2] = {1, 3};
+      const hid_t space = H5Dget_space(set), memory = H5Screate_simple(2, count, nullptr);
+      H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+      ASSERT_GE(H5Dwrite(set, H5T_NATIVE_INT64, memory, space, H5P_DEFAULT, wrong), 0);
+      H5Sclose(memory);
+      H5Sclose(space);
+      H5Dclose(set);
+      H5Fclose(h5);
     }
     const auto before = fs::last_write_time(file);
     EXPECT_EQ(granjet("analyze " + file.string()), 2) << d.name << "\n" << err_;

@@ -68,12 +68,17 @@ TEST(RunBudget, ValuesThatHungAreRefusedWithTheirCount) {
                  "collisions");
 }
 
-// 22 frames (every 5 of 100, and the last) of 20,439 grains, 64 bytes each: 0.029 GB.
+// 22 frames (every 5 of 100, and the last) of 20,439 grains, 72 bytes each (id, present,
+// radius, position, velocity): 0.032 GB; with contacts (up to 3 a grain, 72 bytes each) 288
+// bytes a grain: 0.13 GB.
 TEST(RunBudget, OutputBytesAboveTheLimitAreRefusedUnlessRaised) {
   expect_refused("jet3d.ini", {"output.max_bytes=1e7"}, "soft_dem", "output.max_bytes",
                  "22 frames of 20439");
-  EXPECT_NO_THROW(check_run_budget(load_scene(kScenes + "/jet3d.ini", {"output.max_bytes=3e7"}),
+  EXPECT_NO_THROW(check_run_budget(load_scene(kScenes + "/jet3d.ini", {"output.max_bytes=4e7"}),
                                    "soft_dem", kMachine));
+  expect_refused("jet3d.ini",
+                 {"output.max_bytes=4e7", "output.fields=position,velocity,radius,id,contacts"},
+                 "soft_dem", "output.max_bytes", "about 0.129");
 }
 
 // [3.1]: a linear contact at normal speed v overlaps by at most v t_c / pi; beyond

@@ -160,6 +160,23 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"contact.restitution"}, "contact.restitution", "section.key=value");
 }
 
+TEST(SceneFile, OutputFieldsListTheOptionalPerGrainData) {
+  const Scene plain = load_scene(kScenes + "/jet3d.ini", {});
+  EXPECT_FALSE(plain.output.omega || plain.output.force || plain.output.contacts);
+  const Scene chains =
+      load_scene(kScenes + "/jet3d.ini", {"output.fields= id, position,velocity , radius,contacts"});
+  EXPECT_TRUE(chains.output.contacts);
+  EXPECT_FALSE(chains.output.omega || chains.output.force);
+  const Scene again = reparsed(scene_to_ini(chains));
+  EXPECT_TRUE(again.output.contacts && !again.output.omega && !again.output.force);
+  expect_refused({"output.fields=position,velocity,radius,id,spin"}, "output.fields",
+                 "'spin' is not one of");
+  expect_refused({"output.fields=position,velocity,id,force"}, "output.fields", "lacks radius");
+  expect_refused({"output.fields=position,velocity,radius,id,force,force"}, "output.fields",
+                 "listed twice");
+  expect_refused({"output.unit_labels=SI"}, "output.unit_labels", "mdanalysis | reduced");
+}
+
 TEST(SceneFile, UnknownKeyInFileAndMissingFileAreRefused) {
   std::istringstream in("[contact]\nrestitution = 0.8\nrestitutoin = 0.9\n");
   EXPECT_THROW(
