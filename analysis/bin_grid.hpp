@@ -28,6 +28,7 @@ struct BinSpec {
 struct MeshEdges {
   std::vector<double> lateral;
   std::vector<double> height;
+  double height_origin = 0.0;  // BinSpec::height_origin: where height 0 lies on the jet axis
 };
 
 class BinGrid {

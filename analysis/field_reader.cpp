@@ -112,6 +112,14 @@ RunResult read_run_result(const std::filesystem::path& file) {
   RunResult r;
   r.edges.lateral = read_doubles(f.get(), "/fields/mesh/lateral", ctx);
   r.edges.height = read_doubles(f.get(), "/fields/mesh/height", ctx);
+  // Files written before the attribute existed measured from the default origin, 0.
+  if (H5Aexists_by_name(f.get(), "/fields", "height_origin", H5P_DEFAULT) > 0)
+    ctx.check(H5Aread(ctx.own(H5Aopen_by_name(f.get(), "/fields", "height_origin", H5P_DEFAULT,
+                                              H5P_DEFAULT),
+                              H5Aclose, "open", "/fields attribute height_origin")
+                          .get(),
+                      H5T_NATIVE_DOUBLE, &r.edges.height_origin),
+              "read", "/fields attribute height_origin");
   const std::size_t bins = (r.edges.lateral.size() - 1) * (r.edges.height.size() - 1);
   r.layout = Table(bins);
   for (const std::string& name : datasets_below(f.get(), "/fields/layout", ctx)) {

@@ -7,18 +7,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "analysis/atomic_file.hpp"
 #include "analysis/hdf5_handle.hpp"
 
 namespace granjet::analysis {
 namespace {
-
-// "stress.rz" -> "stress/rz": dotted names become nested groups.
-std::string path_of(std::string name) {
-  for (char& c : name)
-    if (c == '.') c = '/';
-  return name;
-}
 
 class GroupWriter {
  public:
@@ -116,7 +108,7 @@ void write_spreads(GroupWriter& out, const std::string& group, const EnsembleTab
       sem.push_back(s.sem);
       count.push_back(s.count);
     }
-    const std::string base = group + "/" + path_of(name) + "/";
+    const std::string base = group + "/" + field_path(name) + "/";
     out.dataset(base + "mean", dims, mean);
     out.dataset(base + "std", dims, std);
     out.dataset(base + "sem", dims, sem);
@@ -137,29 +129,11 @@ void write_distribution(GroupWriter& out, const std::string& group, const Ensemb
       std.push_back(table.at(row, name).std);
       sem.push_back(table.at(row, name).sem);
     }
-    const std::string base = group + "/" + path_of(name) + "/";
+    const std::string base = group + "/" + field_path(name) + "/";
     out.dataset(base + "mean", dims, mean);
     out.dataset(base + "std", dims, std);
     out.dataset(base + "sem", dims, sem);
   }
-}
-
-// File names may hold characters that XML reserves.
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
 }
 
 std::vector<hsize_t> mesh_dims(const EnsembleResult& r) {
@@ -167,6 +141,12 @@ std::vector<hsize_t> mesh_dims(const EnsembleResult& r) {
 }
 
 }  // namespace
+
+std::string field_path(std::string name) {
+  for (char& c : name)
+    if (c == '.') c = '/';
+  return name;
+}
 
 void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult& result) {
   GroupWriter out(file);
@@ -177,8 +157,12 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
   out.attribute("/fields", "seeds", result.seeds);
   out.attribute("/fields", "coordinates",
                 std::string(result.dimension == 3 ? "cylindrical" : "cartesian"));
+  out.attribute("/fields", "height_origin", result.edges.height_origin);
   out.dataset("/fields/mesh/lateral", {result.edges.lateral.size()}, result.edges.lateral);
   out.dataset("/fields/mesh/height", {result.edges.height.size()}, result.edges.height);
+  const FieldCells cells = field_cells(result);
+  out.dataset("/fields/mesh/points", {cells.sectors + 1, cells.layers + 1, cells.lateral + 1, 3},
+              cells.corners);
   for (const std::string& name : result.layout.names())
     out.dataset("/fields/layout/" + name, dims, result.layout.column(name));
   write_spreads(out, "/fields", result.fields, dims);
@@ -199,30 +183,6 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
     out.attribute(group, "converged", fit.converged ? 1.0 : 0.0);
   }
   out.close();
-}
-
-void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
-                       const EnsembleResult& result) {
-  const std::size_t nx = result.edges.lateral.size(), ny = result.edges.height.size();
-  const std::string source = xml_escaped(h5_name);
-  const auto item = [&](const std::string& dims, const std::string& path) {
-    return "<DataItem Dimensions=\"" + dims +
-           "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + source + ":" + path +
-           "</DataItem>";
-  };
-  const std::string cells = std::to_string(ny - 1) + " " + std::to_string(nx - 1);
-  write_file_atomically(xmf, [&](std::ostream& out) {
-    out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
-        << "  <Grid Name=\"fields\" GridType=\"Uniform\">\n"
-        << "   <Topology TopologyType=\"2DRectMesh\" Dimensions=\"" << ny << " " << nx << "\"/>\n"
-        << "   <Geometry GeometryType=\"VXVY\">\n    "
-        << item(std::to_string(nx), "/fields/mesh/lateral") << "\n    "
-        << item(std::to_string(ny), "/fields/mesh/height") << "\n   </Geometry>\n";
-    for (const std::string& name : result.fields.names())
-      out << "   <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n    "
-          << item(cells, "/fields/" + path_of(name) + "/mean") << "\n   </Attribute>\n";
-    out << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  });
 }
 
 std::filesystem::path store_ensemble(const std::filesystem::path& file,

@@ -1,8 +1,10 @@
 // Stores an analysed ensemble in an HDF5 file (a granjet run file or any other; created when it
 // does not exist), in two groups that replace earlier ones of the same name:
 //
-//   /fields   attributes dimension, seeds, coordinates ("cylindrical" | "cartesian")
+//   /fields   attributes dimension, seeds, coordinates ("cylindrical" | "cartesian"),
+//             height_origin (where height 0 lies on the jet axis, z in 3D, x in 2D)
 //     mesh/lateral, mesh/height          bin borders (r or y; height above the wall)
+//     mesh/points                         corners of the cells the sidecar draws (FieldCells)
 //     layout/<name>                       [layers][lateral] bin centres, indices, volumes
 //     <field path>/{mean,std,sem,count}   [layers][lateral]; "stress.rz" -> stress/rz/...
 //   /analysis
@@ -10,14 +12,15 @@
 //     vdf/c, vdf/density/<a>/{mean,std,sem}; azimuth/phi, azimuth/dN_dphi/{mean,std,sem} (3D)
 //     fits/<law>/{value,error}            attributes parameters, ssr, points, converged
 //
-// plus an XDMF file that shows the fields' means in ParaView as cell data on the
-// (lateral, height) mesh.
+// plus an XDMF file that shows the fields' means in ParaView as cells where the grains were
+// (fields_xdmf.hpp).
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "analysis/fields_xdmf.hpp"
 #include "analysis/run_analysis.hpp"
 
 namespace granjet::analysis {
@@ -25,15 +28,14 @@ namespace granjet::analysis {
 // Throws std::runtime_error naming the file and object when HDF5 fails.
 void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult& result);
 
-// Writes `xmf` describing /fields of `h5_name` (relative to the directory of `xmf`). Throws
-// std::runtime_error naming `xmf` when it cannot be written.
-void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
-                       const EnsembleResult& result);
+// Where a field's datasets lie below /fields: dotted names become nested groups,
+// "stress.rz" -> "stress/rz".
+std::string field_path(std::string name);
 
-// Both of the above, the one way every command stores an analysis: /fields and /analysis into
-// `file`, and a sidecar with the extension .fields.xmf beside the name the file will have,
-// `published_as` (a run's file is written as .partial and renamed last; empty: `file` itself).
-// Returns the sidecar's path.
+// write_analysis_hdf5 and write_fields_xdmf, the one way every command stores an analysis:
+// /fields and /analysis into `file`, and a sidecar with the extension .fields.xmf beside the name
+// the file will have, `published_as` (a run's file is written as .partial and renamed last;
+// empty: `file` itself). Returns the sidecar's path.
 std::filesystem::path store_ensemble(const std::filesystem::path& file,
                                      const EnsembleResult& result,
                                      const std::filesystem::path& published_as = {});

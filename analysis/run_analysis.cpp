@@ -132,6 +132,7 @@ RunResult RunAnalysis<D>::finish() const {
   RunResult r;
   r.layout = fields_.layout();
   r.edges = fields_.coordinates().grid().edges();
+  r.edges.height_origin = config_.bins.height_origin;
   r.fields = fields_.fields(config_.options);
 
   const VelocityDistribution<D>& vdf = fields_.velocity_distribution();
