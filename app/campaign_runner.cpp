@@ -332,8 +332,11 @@ ChildProcess start_run(const PlannedRun& run) {
     if (!ini.flush()) throw std::runtime_error("cannot write " + run.file(".ini").string());
   }
   std::ofstream(run.file(".log"), std::ios::trunc);
+  // The child's stdout and stderr are its log: its own would be the same rows (the resolved
+  // scene and the summary are the .ini and the .json).
   return ChildProcess({"run", run.file(".ini").string(), "--backend", run.backend, "--out",
-                       run.file(".h5").string(), "--summary", run.file(".json").string()},
+                       run.file(".h5").string(), "--summary", run.file(".json").string(),
+                       "--no-log"},
                       run.file(".log"));
 }
 

@@ -24,7 +24,8 @@ namespace {
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
               [--summary run.json] [--seeds 1..10 | 1,4,7] [--author NAME] [--quiet]
-  granjet resume RUN.h5.partial [--set run.t_end=T] [--summary run.json] [--quiet]
+              [--no-log]
+  granjet resume RUN.h5.partial [--set run.t_end=T] [--summary run.json] [--quiet] [--no-log]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
               [--quiet]            (mpirun -n K granjet campaign ... spreads it over K ranks)
@@ -44,9 +45,12 @@ run options:
                     analysis' mean and spread over the seeds go to OUT and SUMMARY
   --author NAME     the H5MD author (default: $GRANJET_AUTHOR, else the login name)
   --quiet           no progress rows
+  --no-log          no OUT's stem + .log (the command, resolved scene, progress rows,
+                    warnings and summary, as LAMMPS's log.lammps)
 resume options (a run's .partial goes on from its last checkpoint, run.checkpoint_interval):
   --set KEY=VALUE   only run.t_end (to extend the run), run.threads, run.progress_interval
   --summary FILE    the JSON summary of the whole run (as run --summary)
+  --no-log          do not append to the run's .log
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
@@ -121,9 +125,10 @@ int run(const std::vector<std::string>& args) {
       "backend", po::value(&o.backend))("set", po::value(&o.overrides)->composing())(
       "out", po::value<std::string>())("summary", po::value<std::string>())(
       "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet))(
-      "author", po::value(&o.author));
+      "no-log", po::bool_switch())("author", po::value(&o.author));
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
+  o.log = !vm["no-log"].as<bool>();
   if (vm.count("seeds")) o.seeds = granjet::parse_seeds(vm["seeds"].as<std::string>(), "--seeds");
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
@@ -135,9 +140,10 @@ int resume(const std::vector<std::string>& args) {
   po::options_description desc;
   desc.add_options()("file", po::value<std::string>()->required())(
       "set", po::value(&o.overrides)->composing())("summary", po::value<std::string>())(
-      "quiet", po::bool_switch(&o.quiet));
+      "quiet", po::bool_switch(&o.quiet))("no-log", po::bool_switch());
   const po::variables_map vm = parse(args, desc, "file");
   o.partial = vm["file"].as<std::string>();
+  o.log = !vm["no-log"].as<bool>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   return granjet::resume_command(o, std::cout);
 }

@@ -31,7 +31,8 @@ std::vector<OutputPath> run_outputs(const fs::path& out, const fs::path& summary
       {"--out", out, whose + " file"},
       {"--out", with_suffix(out, ".partial"), whose + " file while it is written"},
       {"--out", with_extension(out, ".xmf"), whose + " XDMF sidecar"},
-      {"--out", with_extension(out, ".fields.xmf"), whose + " fields sidecar"}};
+      {"--out", with_extension(out, ".fields.xmf"), whose + " fields sidecar"},
+      {"--out", with_extension(out, ".log"), whose + " log"}};
   if (!summary.empty()) {
     files.push_back({"--summary", summary, whose + " summary"});
     files.push_back({"--summary", with_suffix(summary, ".partial"),

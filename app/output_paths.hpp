@@ -15,7 +15,7 @@ struct OutputPath {
   std::string role;    // "the run file", "its XDMF sidecar", ...
 };
 
-// The files `granjet run` writes for one run: OUT, OUT.partial and OUT's sidecars (option
+// The files `granjet run` writes for one run: OUT, OUT.partial, OUT's sidecars and log (option
 // --out), SUMMARY and SUMMARY.partial (--summary; none when empty). `whose` starts their roles:
 // "the run's", "seed 7's".
 std::vector<OutputPath> run_outputs(const std::filesystem::path& out,

@@ -23,10 +23,12 @@
 #include "app/output_paths.hpp"
 #include "app/progress_table.hpp"
 #include "app/run_budget.hpp"
+#include "app/run_log.hpp"
 #include "app/run_warnings.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
+#include "core/initial_state.hpp"
 
 namespace granjet {
 namespace {
@@ -132,14 +134,42 @@ struct RunCursor {
   }
 };
 
+// output.fields may ask only for what the simulator has: hard spheres interact by impulses,
+// and only frictional soft grains turn.
+template <int D>
+void check_output_fields(const Scene& scene, const Simulator<D>& sim) {
+  if ((scene.output.force || scene.output.contacts) && !sim.has_contact_forces())
+    throw InputError("output.fields",
+                     "force and contacts need contact forces; the " + std::string(sim.backend()) +
+                         " backend's hard spheres exchange impulses only (use --backend "
+                         "soft_dem, or drop them)");
+  const bool hard = !sim.has_contact_forces();
+  if (scene.output.omega && (hard || !scene.needs_rotation()))
+    throw InputError("output.fields", std::string("omega: the grains of this run do not turn (") +
+                                          (hard ? "smooth hard spheres" : "contact.friction = 0") +
+                                          "); drop it");
+}
+
 template <int D>
 int run_scene(const Scene& scene, const RunOptions& options, const std::filesystem::path& out_file,
               std::ostream& out, const StateArchive* resume_from) {
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, scene);
-  for (const std::string& note : backend_notes(options.backend, scene))
-    std::cerr << "granjet: " << note << "\n";
+  check_output_fields(scene, *sim);
+  RunLog log(options.log ? log_path_for(out_file) : std::filesystem::path(),
+             resume_from != nullptr, options.quiet ? nullptr : &out);
+  log.file() << "# granjet " << kVersion << "+" << kCommit << (resume_from ? " resume " : " run ")
+             << (resume_from ? out_file.string() + ".partial" : options.scene_file.string())
+             << " --backend " << options.backend;
+  for (const std::string& o : options.overrides) log.file() << " --set " << o;
+  log.file() << "\n# resolved scene\n" << scene_to_ini(scene) << "# run\n";
+  // Said on stderr, and kept in the log.
+  const auto say = [&](const std::string& text) {
+    std::cerr << "granjet: " << text << "\n";
+    log.file() << "granjet: " << text << "\n";
+  };
+  for (const std::string& note : backend_notes(options.backend, scene)) say(note);
   const std::vector<std::string> warnings = run_warnings(scene, options.backend);
-  for (const std::string& warning : warnings) std::cerr << "granjet: warning: " << warning << "\n";
+  for (const std::string& warning : warnings) say("warning: " + warning);
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
   const Particles<D> initial = sim->particles();
 
@@ -176,6 +206,13 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   };
 
   std::optional<analysis::H5mdWriter<D>> writer;
+  ForceSample<D> forces;
+  const bool sample_forces = scene.output.force || scene.output.contacts;
+  const auto store_frame = [&](std::int64_t step) {
+    if (sample_forces) sim->sample_forces(forces);
+    writer->write_frame(step, sim->time(), sim->particles(), sample_forces ? &forces : nullptr);
+    writer->write_observables(step, sim->time(), observables(*sim));
+  };
   if (resume_from) {
     writer.emplace(out_file, typename analysis::H5mdWriter<D>::Resume{});
     writer->replace_scene(scene_to_ini(scene));  // a resume may have extended run.t_end
@@ -192,9 +229,17 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     meta.backend = options.backend;
     meta.scene_ini = scene_to_ini(scene);
     meta.dimension = D;
+    meta.omega = scene.output.omega;
+    meta.force = scene.output.force;
+    meta.contacts = scene.output.contacts;
+    meta.unit_labels = scene.output.unit_labels;
+    if (scene.periodic()) {
+      const Vec<D> box = gas_lattice<D>(scene.gas).box;
+      meta.periodic_box.assign(box.data(), box.data() + D);
+    }
+    meta.frame_interval = scene.output.interval > 0.0 ? scene.output.interval : t_end;
     writer.emplace(out_file, meta, sim->particles().size());
-    writer->write_frame(0, sim->time(), sim->particles());
-    writer->write_observables(0, sim->time(), observables(*sim));
+    store_frame(0);
     if (binary) tracker.observe(sim->particles(), sim->time());
   }
   const auto checkpoint = [&] {
@@ -206,10 +251,10 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     writer->write_checkpoint(archive);
   };
 
-  if (!options.quiet)
-    out << (resume_from ? "continuing " : "writing ") << out_file.string() << " (" << options.backend
-        << ", " << D << "D, " << sim->particles().size() << " grains, t_end " << t_end << ")\n";
-  ProgressTable progress(out, t_end, options.quiet, event_driven(options.backend));
+  log.report() << (resume_from ? "continuing " : "writing ") << out_file.string() << " ("
+               << options.backend << ", " << D << "D, " << sim->particles().size()
+               << " grains, t_end " << t_end << ")\n";
+  ProgressTable progress(log.report(), t_end, /*quiet=*/false, event_driven(options.backend));
   const Interrupts interrupts;
   sim->stop_when(&interrupts.stop_flag());
   std::string status = "complete";
@@ -228,8 +273,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       if (gas) gas->observe(*sim);
       if (fields) fields->observe(*sim);
       if (t >= cursor.next_output - 0.5 * dt || t >= t_end - 0.5 * dt) {
-        writer->write_frame(frame_step(sim->stats()), t, sim->particles());
-        writer->write_observables(frame_step(sim->stats()), t, observables(*sim));
+        store_frame(frame_step(sim->stats()));
         cursor.last_output = t;
         while (cursor.next_output <= t + 0.5 * dt) cursor.next_output += scene.output.interval;
       }
@@ -253,17 +297,18 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
       checkpoint();
       status = "interrupted";
       const std::filesystem::path kept = writer->abandon(status);
-      std::cerr << "granjet: interrupted (signal " << interrupts.signal() << ") at t = "
-                << sim->time() << "; the run is kept in " << kept.string()
-                << "; go on with: granjet resume " << kept.string() << "\n";
+      std::ostringstream text;
+      text << "interrupted (signal " << interrupts.signal() << ") at t = " << sim->time()
+           << "; the run is kept in " << kept.string()
+           << "; go on with: granjet resume " << kept.string();
+      say(text.str());
     } else if (cursor.last_output < sim->time()) {
-      writer->write_frame(frame_step(sim->stats()), sim->time(), sim->particles());
-      writer->write_observables(frame_step(sim->stats()), sim->time(), observables(*sim));
+      store_frame(frame_step(sim->stats()));
     }
   } catch (const BlowUpError& e) {
     const std::filesystem::path kept = writer->abandon(e.what());
-    std::cerr << "granjet: " << e.what() << "\n"
-              << "granjet: frames written so far are kept in " << kept.string() << "\n";
+    say(e.what());
+    say("frames written so far are kept in " + kept.string());
     status = e.what();
   }
   const double wall =
@@ -312,30 +357,43 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     if (fields && fields->window_sampled())
       summary["analysis"] = store_analysis<D>(*fields, *partial, out_file);
     else if (fields)  // run_warnings said so before the run
-      std::cerr << "granjet: no fields written: the analysis window never started\n";
+      say("no fields written: the analysis window never started");
   }
-  if (!options.quiet || status != "complete") {
+  {
+    std::ostringstream timing;
     const SimStats s = sim->stats();
     if (event_driven(options.backend))
-      out << "loop time " << wall << " s for " << s.events << " events (" << s.collisions
-          << " collisions, " << s.cell_crossings << " cell crossings), "
-          << summary["collisions_per_second"].get<double>() << " collisions/s\n";
+      timing << "loop time " << wall << " s for " << s.events << " events (" << s.collisions
+             << " collisions, " << s.cell_crossings << " cell crossings), "
+             << summary["collisions_per_second"].get<double>() << " collisions/s\n";
     else
-      out << "loop time " << wall << " s for " << s.steps << " steps, "
-          << summary["particle_steps_per_second"].get<double>() << " particle-steps/s\n";
+      timing << "loop time " << wall << " s for " << s.steps << " steps, "
+             << summary["particle_steps_per_second"].get<double>() << " particle-steps/s\n";
     if (summary.contains("measured")) {
-      out << "measured";
-      for (const auto& [key, value] : summary["measured"].items()) out << " " << key << " " << value;
+      timing << "measured";
+      for (const auto& [key, value] : summary["measured"].items())
+        timing << " " << key << " " << value;
       if (summary.contains("theory"))
         for (const auto& [key, value] : summary["theory"].items())
-          out << " (theory " << key << " " << value << ")";
-      out << "\n";
+          timing << " (theory " << key << " " << value << ")";
+      timing << "\n";
     }
+    // A failed run reports even when quiet.
+    log.report() << timing.str();
+    if (options.quiet && status != "complete") out << timing.str();
+  }
+  {
+    // The analysis' bins would be thousands of lines indented: one line of its own instead.
+    nlohmann::json brief = summary;
+    brief.erase("analysis");
+    log.file() << "# summary\n" << brief.dump(2) << "\n";
+    if (summary.contains("analysis"))
+      log.file() << "# summary: analysis\n" << summary["analysis"].dump() << "\n";
   }
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
   if (partial) {
     writer->publish();
-    if (!options.quiet) out << "wrote " << out_file.string() << "\n";
+    log.report() << "wrote " << out_file.string() << "\n";
   }
   if (status == "interrupted") return 128 + interrupts.signal();
   return status == "complete" ? 0 : 3;
@@ -400,6 +458,7 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   run.backend = stored.backend;
   run.summary = options.summary;
   run.quiet = options.quiet;
+  run.log = options.log;
   const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
   std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
   std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });

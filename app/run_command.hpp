@@ -16,6 +16,7 @@ struct RunOptions {
   std::filesystem::path out;           // empty: <scene file stem>.h5 in the working directory
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
+  bool log = true;  // <out stem>.log beside the output (app/run_log.hpp)
   // The H5MD author (/h5md/author/name); empty: $GRANJET_AUTHOR, else the login name.
   std::string author;
   // An ensemble: one run per seed (run.seed), each to <out stem>.seed<N>.h5 (and
@@ -33,6 +34,7 @@ struct ResumeOptions {
   std::vector<std::string> overrides;  // only the keys kResumableKeys names
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
+  bool log = true;  // appends to the run's log
 };
 
 // `granjet resume`: the run of a .partial goes on from its last checkpoint, bit-identically to

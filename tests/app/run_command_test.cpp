@@ -158,5 +158,31 @@ TEST_F(GranjetCommand, SubcommandHelpProgressColumnsAndAuthor) {
             std::string::npos);
 }
 
+// As LAMMPS's log.lammps: the run's folder keeps the command, the resolved scene, the rows the
+// terminal showed (also with --quiet) and the summary; a resume appends; --no-log writes none.
+TEST_F(GranjetCommand, RunLogKeepsSceneRowsAndSummary) {
+  const fs::path out = dir_ / "logged.h5";
+  ASSERT_EQ(granjet("run " + scene("binary.ini") + " --quiet --set run.progress_interval=0.1" +
+                    " --out " + out.string()),
+            0)
+      << err_;
+  std::ifstream in(dir_ / "logged.log");
+  const std::string log{std::istreambuf_iterator<char>(in), {}};
+  for (const std::string& part :
+       {std::string("# granjet "), std::string("binary.ini --backend soft_dem"),
+        std::string("# resolved scene\n[scene]\nname = binary"), std::string("E_diss"),
+        std::string("   0.500  100.0%"), std::string("measured contact_time"),
+        std::string("# summary\n{"), std::string("\"status\": \"complete\""),
+        "wrote " + out.string()})
+    EXPECT_NE(log.find(part), std::string::npos) << part << " in\n" << log;
+  const fs::path quiet = dir_ / "unlogged.h5";
+  ASSERT_EQ(granjet("run " + scene("binary.ini") + " --quiet --no-log --out " + quiet.string()), 0);
+  EXPECT_FALSE(fs::exists(dir_ / "unlogged.log"));
+  // The log is one of the run's outputs: it may not be the summary.
+  EXPECT_EQ(granjet("run " + scene("binary.ini") + " --out " + out.string() + " --summary " +
+                    (dir_ / "logged.log").string()),
+            2);
+}
+
 }  // namespace
 }  // namespace granjet
