@@ -256,7 +256,7 @@ class Coordinator {
     const PlannedRun& first = plan_.runs[ens.runs.front()];
     const nlohmann::json header = {
         {"scene", first.scene.name}, {"backend", first.backend}, {"dimension", first.scene.dimension}};
-    const int combined = write_ensemble(ens.file(".h5"), ens.file(".json"), header, members,
+    const int combined = merge_ensemble(ens.file(".h5"), ens.file(".json"), header, members,
                                         first.scene.dimension);
     if (combined == 0) std::filesystem::remove(ens.file(".json"));
     entry = {{"group", campaign_.groups[ens.group].name},

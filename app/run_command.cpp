@@ -66,9 +66,7 @@ template <int D>
 nlohmann::json store_analysis(const InlineAnalysis<D>& fields, const std::filesystem::path& file,
                               const std::filesystem::path& published_as) {
   const std::vector<analysis::RunResult> runs{fields.finish()};
-  const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  analysis::store_ensemble(file, result, published_as);
-  nlohmann::json j = analysis::to_json(result);
+  nlohmann::json j = analysis::to_json(analysis::write_ensemble(file, runs, D, published_as));
   j["seconds"] = fields.seconds();
   return j;
 }
@@ -421,7 +419,7 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
     members.push_back({seed, file});
   }
   const nlohmann::json header = {{"scene", scene.name}, {"backend", options.backend}, {"dimension", D}};
-  const int combined = write_ensemble(out_file, options.summary, header, members, D);
+  const int combined = merge_ensemble(out_file, options.summary, header, members, D);
   if (combined > 0)
     out << "ensemble of " << combined << " seeds: /fields and /analysis in " << out_file.string()
         << "\n";
