@@ -57,8 +57,8 @@ void GasObserver<D>::summarize(Simulator<D>& sim, nlohmann::json& summary) {
   summary["measured"] = {{"temperature", temperature()}};
   if (kind_ == SceneKind::kGas) {
     summary["measured"]["compressibility"] = compressibility();
-    summary["theory"] = {{"compressibility",
-                          D == 3 ? kinetic::carnahan_starling(phi_) : kinetic::henderson(phi_)}};
+    summary["theory"] = {
+        {"compressibility", D == 3 ? kinetic::carnahan_starling(phi_) : kinetic::henderson(phi_)}};
     return;
   }
   // Backend-neutral: -d ln T/dt at gas.temperature (the soft backend counts contacts, not
@@ -66,8 +66,8 @@ void GasObserver<D>::summarize(Simulator<D>& sim, nlohmann::json& summary) {
   summary["measured"]["cooling_rate"] = cooling_rate(initial_temperature_);
   if (sim.stats().collisions > 0) {
     summary["measured"]["cooling_per_collision"] = cooling_per_collision();
-    summary["theory"] = {{"cooling_per_collision",
-                          kinetic::cooling_per_collision(restitution_, D)}};
+    summary["theory"] = {
+        {"cooling_per_collision", kinetic::cooling_per_collision(restitution_, D)}};
   }
 }
 

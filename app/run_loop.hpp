@@ -23,7 +23,8 @@ void observe_until(Simulator<D>& sim, double t_end, double half_step,
                    const RunObservers<D>& observers, const Interrupts& interrupts) {
   while (sim.time() < t_end - half_step) {
     double target = t_end;
-    for (const analysis::RunObserver<D>* o : observers) target = std::min(target, o->next_time(sim));
+    for (const analysis::RunObserver<D>* o : observers)
+      target = std::min(target, o->next_time(sim));
     sim.advance_to(target);
     if (interrupts.signal() != 0) return;  // between the observers' times: none looks
     for (analysis::RunObserver<D>* o : observers) o->observe(sim);
