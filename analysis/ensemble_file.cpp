@@ -17,6 +17,7 @@ EnsembleResult write_file(const std::filesystem::path& out_file,
   meta.creator_version = first.creator_version;
   meta.backend = first.backend;
   meta.scene_ini = first.scene_ini;
+  meta.requested_scene_ini = first.requested_scene_ini;
   meta.dimension = D;
   const std::filesystem::path here = out_file.parent_path().empty() ? "." : out_file.parent_path();
   for (const std::filesystem::path& member : members)

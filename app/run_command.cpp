@@ -18,8 +18,8 @@
 #include "app/output_paths.hpp"
 #include "app/progress_rows.hpp"
 #include "app/run_budget.hpp"
-#include "app/run_loop.hpp"
 #include "app/run_log.hpp"
+#include "app/run_loop.hpp"
 #include "app/run_warnings.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
@@ -29,18 +29,16 @@
 namespace granjet {
 namespace {
 
-bool event_driven(const std::string& backend) { return backend == "event_driven"; }
-
 template <int D>
-nlohmann::json summary_json(const Scene& scene, const std::string& backend,
-                            const Simulator<D>& sim, std::int64_t grains_initial,
-                            double wall_seconds, const std::string& status) {
+nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Simulator<D>& sim,
+                            std::int64_t grains_initial, double wall_seconds,
+                            const std::string& status) {
   const SimStats s = sim.stats();
   const EnergyBalance e = sim.energy();
   nlohmann::json j;
   j["status"] = status;
   j["scene"] = scene.name;
-  j["backend"] = backend;
+  j["backend"] = backend.name;
   j["dimension"] = D;
   j["grains"] = sim.particles().size();
   j["grains_initial"] = grains_initial;
@@ -53,7 +51,7 @@ nlohmann::json summary_json(const Scene& scene, const std::string& backend,
   j["wall_seconds"] = wall_seconds;
   j["particle_steps"] = s.particle_steps;
   j["particle_steps_per_second"] = wall_seconds > 0.0 ? s.particle_steps / wall_seconds : 0.0;
-  if (event_driven(backend)) {
+  if (backend.counts_events) {
     j["events"] = s.events;
     j["collisions"] = s.collisions;
     j["cell_crossings"] = s.cell_crossings;
@@ -106,13 +104,31 @@ std::string author_of(const RunOptions& options) {
   return "granjet user";
 }
 
+// What the backend changed of the requested scene, for the summary.
+nlohmann::json adaptations_json(const SceneSupport& support) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const SceneSupport::Adaptation& a : support.adaptations)
+    list.push_back({{"key", a.key},
+                    {"requested", a.requested},
+                    {"resolved", a.resolved},
+                    {"reason", a.reason}});
+  return list;
+}
+
+// The requested scene as the run's file keeps it: only where the backend adapted it.
+std::string requested_ini(const Scene& requested, const SceneSupport& support) {
+  return support.adaptations.empty() ? std::string() : scene_to_ini(requested);
+}
+
 template <int D>
-analysis::RunMetadata run_metadata(const Scene& scene, const RunOptions& options) {
+analysis::RunMetadata run_metadata(const Scene& scene, const std::string& requested_scene_ini,
+                                   const RunOptions& options) {
   analysis::RunMetadata meta;
   meta.creator_version = std::string(kVersion) + "+" + kCommit;  // semver build metadata
   meta.author = author_of(options);
   meta.backend = options.backend;
   meta.scene_ini = scene_to_ini(scene);
+  meta.requested_scene_ini = requested_scene_ini;
   meta.dimension = D;
   meta.omega = scene.output.omega;
   meta.force = scene.output.force;
@@ -126,29 +142,17 @@ analysis::RunMetadata run_metadata(const Scene& scene, const RunOptions& options
   return meta;
 }
 
-// output.fields may ask only for what the simulator has: hard spheres interact by impulses,
-// and only frictional soft grains turn.
+// One run of the scene as the backend resolves it: the simulator advanced to run.t_end under
+// its observers (the scene's measurements, then frames, progress rows and checkpoints), its file
+// published when complete.
 template <int D>
-void check_output_fields(const Scene& scene, const Simulator<D>& sim) {
-  if ((scene.output.force || scene.output.contacts) && !sim.has_contact_forces())
-    throw InputError("output.fields",
-                     "force and contacts need contact forces; the " + std::string(sim.backend()) +
-                         " backend's hard spheres exchange impulses only (use --backend "
-                         "soft_dem, or drop them)");
-  const bool hard = !sim.has_contact_forces();
-  if (scene.output.omega && (hard || !scene.needs_rotation()))
-    throw InputError("output.fields", std::string("omega: the grains of this run do not turn (") +
-                                          (hard ? "smooth hard spheres" : "contact.friction = 0") +
-                                          "); drop it");
-}
-
-// One run: the simulator advanced to run.t_end under its observers (the scene's measurements,
-// then frames, progress rows and checkpoints), its file published when complete.
-template <int D>
-int run_scene(const Scene& scene, const RunOptions& options, const std::filesystem::path& out_file,
-              std::ostream& out, const StateArchive* resume_from) {
-  std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, scene);
-  check_output_fields(scene, *sim);
+int run_scene(const Scene& requested, const RunOptions& options,
+              const std::filesystem::path& out_file, std::ostream& out,
+              const StateArchive* resume_from) {
+  const Backend& backend = backend_named(options.backend);
+  const SceneSupport support = check_backend(backend.name, requested);
+  const Scene& scene = support.resolved;
+  std::unique_ptr<Simulator<D>> sim = make_simulator<D>(backend.name, scene);
   RunLog log(options.log ? log_path_for(out_file) : std::filesystem::path(),
              resume_from != nullptr, options.quiet ? nullptr : &out);
   log.file() << "# granjet " << kVersion << "+" << kCommit << (resume_from ? " resume " : " run ")
@@ -161,8 +165,9 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     std::cerr << "granjet: " << text << "\n";
     log.file() << "granjet: " << text << "\n";
   };
-  for (const std::string& note : backend_notes(options.backend, scene)) say(note);
-  const std::vector<std::string> warnings = run_warnings(scene, options.backend);
+  for (const SceneSupport::Adaptation& a : support.adaptations) say(describe(backend.name, a));
+  for (const std::string& note : support.notes) say(backend.name + ": " + note);
+  const std::vector<std::string> warnings = run_warnings(scene, backend);
   for (const std::string& warning : warnings) say("warning: " + warning);
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
 
@@ -171,12 +176,14 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
   std::optional<analysis::H5mdWriter<D>> writer;
   if (resume_from) {
     writer.emplace(out_file, typename analysis::H5mdWriter<D>::Resume{});
-    writer->replace_scene(scene_to_ini(scene));  // a resume may have extended run.t_end
+    // A resume may have extended run.t_end.
+    writer->replace_scenes(scene_to_ini(scene), requested_ini(requested, support));
   } else {
-    writer.emplace(out_file, run_metadata<D>(scene, options), sim->particles().size());
+    writer.emplace(out_file, run_metadata<D>(scene, requested_ini(requested, support), options),
+                   sim->particles().size());
   }
   FrameOutput<D> frames(*writer, scene);
-  ProgressRows<D> progress(log.report(), scene, event_driven(options.backend));
+  ProgressRows<D> progress(log.report(), scene, backend.counts_events);
   RunObservers<D> observers;
   CheckpointSchedule<D> checkpoints(scene, [&] { write_checkpoint(*sim, observers, *writer); });
   for (const auto& m : measurements) observers.push_back(m.get());
@@ -219,8 +226,9 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     status = e.what();
   }
   const double wall = progress.wall_seconds();
-  nlohmann::json summary = summary_json(scene, options.backend, *sim, grains_initial, wall, status);
+  nlohmann::json summary = summary_json(scene, backend, *sim, grains_initial, wall, status);
   if (!warnings.empty()) summary["warnings"] = warnings;
+  if (!support.adaptations.empty()) summary["adaptations"] = adaptations_json(support);
   for (analysis::RunObserver<D>* o : observers) o->summarize(*sim, summary);
   // Everything the run produced goes into its .partial and the sidecars first; the rename to
   // the final name comes last, so a file under that name is complete.
@@ -230,8 +238,7 @@ int run_scene(const Scene& scene, const RunOptions& options, const std::filesyst
     for (analysis::RunObserver<D>* o : observers)
       if (const std::string line = o->store(partial, out_file, summary); !line.empty()) say(line);
   }
-  const std::string timing =
-      timing_text(summary, sim->stats(), event_driven(options.backend), wall);
+  const std::string timing = timing_text(summary, sim->stats(), backend.counts_events, wall);
   log.report() << timing;
   if (options.quiet && status != "complete") out << timing;  // a failed run reports even so
   log_summary(log, summary);
@@ -292,13 +299,16 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
       throw InputError(key, "cannot change on resume (it would make another run); allowed: "
                             "run.t_end, run.threads, run.progress_interval");
   }
-  std::istringstream ini(stored.scene_ini);
+  // The scene as requested: the backend resolves it again, as it did for the run.
+  std::istringstream ini(stored.requested_scene_ini.empty() ? stored.scene_ini
+                                                            : stored.requested_scene_ini);
   const Scene scene = parse_scene(ini, partial.string() + " (stored scene)", options.overrides);
   if (scene.run.t_end < stored.checkpoint_time)
     throw InputError("run.t_end", std::to_string(scene.run.t_end) +
                                       " lies before the checkpoint at t = " +
                                       std::to_string(stored.checkpoint_time));
-  check_run_budget(scene, stored.backend, physical_memory_bytes());
+  check_run_budget(check_backend(stored.backend, scene).resolved, stored.backend,
+                   physical_memory_bytes());
   RunOptions run;
   run.backend = stored.backend;
   run.summary = options.summary;
@@ -317,8 +327,8 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
 
 int run_command(const RunOptions& options, std::ostream& out) {
   const Scene scene = load_scene(options.scene_file, options.overrides);
-  check_backend(options.backend, scene);
-  check_run_budget(scene, options.backend, physical_memory_bytes());
+  check_run_budget(check_backend(options.backend, scene).resolved, options.backend,
+                   physical_memory_bytes());
   std::filesystem::path out_file = options.out;
   if (out_file.empty()) out_file = options.scene_file.stem().string() + ".h5";
   std::vector<OutputPath> outputs = run_outputs(out_file, options.summary);
