@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <sstream>
 
 #include "analysis/h5md_reader.hpp"
@@ -142,6 +142,65 @@ analysis::RunMetadata run_metadata(const Scene& scene, const std::string& reques
   return meta;
 }
 
+// The head of the run's log: the command, and the scene as the backend runs it.
+void write_log_head(RunLog& log, const RunOptions& options, const Scene& scene,
+                    const std::filesystem::path& out_file, bool resuming) {
+  log.file() << "# granjet " << kVersion << "+" << kCommit << (resuming ? " resume " : " run ")
+             << (resuming ? out_file.string() + ".partial" : options.scene_file.string())
+             << " --backend " << options.backend;
+  for (const std::string& o : options.overrides) log.file() << " --set " << o;
+  log.file() << "\n# resolved scene\n" << scene_to_ini(scene) << "# run\n";
+}
+
+// The run's file: a new one, or a resumed run's .partial, whose scenes are stored again (a
+// resume may have extended run.t_end).
+template <int D>
+std::unique_ptr<analysis::H5mdWriter<D>> open_run_file(const std::filesystem::path& out_file,
+                                                       const Scene& scene,
+                                                       const std::string& requested_scene_ini,
+                                                       const RunOptions& options,
+                                                       std::size_t grains, bool resuming) {
+  using Writer = analysis::H5mdWriter<D>;
+  if (!resuming)
+    return std::make_unique<Writer>(out_file, run_metadata<D>(scene, requested_scene_ini, options),
+                                    grains);
+  auto writer = std::make_unique<Writer>(out_file, typename Writer::Resume{});
+  writer->replace_scenes(scene_to_ini(scene), requested_scene_ini);
+  return writer;
+}
+
+// Said on stderr, and kept in the log.
+using Say = std::function<void(const std::string&)>;
+
+// The observers' loop to t_end, and the run's file ended as the loop ended. Returns the run's
+// status: "complete" (with its last frame), "interrupted" (a checkpoint written, the file kept
+// as .partial) or the blow-up's message (the file kept as .partial).
+template <int D>
+std::string observe_to_end(Simulator<D>& sim, const Scene& scene, const RunObservers<D>& observers,
+                           FrameOutput<D>& frames, analysis::H5mdWriter<D>& writer,
+                           const Interrupts& interrupts, const Say& say) {
+  try {
+    observe_until(sim, scene.run.t_end, 0.5 * scene.dt(), observers, interrupts);
+  } catch (const BlowUpError& e) {
+    const std::filesystem::path kept = writer.abandon(e.what());
+    say(e.what());
+    say("frames written so far are kept in " + kept.string());
+    return e.what();
+  }
+  if (interrupts.signal() == 0) {
+    frames.finish(sim);
+    return "complete";
+  }
+  write_checkpoint(sim, observers, writer);
+  const std::filesystem::path kept = writer.abandon("interrupted");
+  std::ostringstream text;
+  text << "interrupted (signal " << interrupts.signal() << ") at t = " << sim.time()
+       << "; the run is kept in " << kept.string() << "; go on with: granjet resume "
+       << kept.string();
+  say(text.str());
+  return "interrupted";
+}
+
 // One run of the scene as the backend resolves it: the simulator advanced to run.t_end under
 // its observers (the scene's measurements, then frames, progress rows and checkpoints), its file
 // published when complete.
@@ -155,13 +214,8 @@ int run_scene(const Scene& requested, const RunOptions& options,
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(backend.name, scene);
   RunLog log(options.log ? log_path_for(out_file) : std::filesystem::path(),
              resume_from != nullptr, options.quiet ? nullptr : &out);
-  log.file() << "# granjet " << kVersion << "+" << kCommit << (resume_from ? " resume " : " run ")
-             << (resume_from ? out_file.string() + ".partial" : options.scene_file.string())
-             << " --backend " << options.backend;
-  for (const std::string& o : options.overrides) log.file() << " --set " << o;
-  log.file() << "\n# resolved scene\n" << scene_to_ini(scene) << "# run\n";
-  // Said on stderr, and kept in the log.
-  const auto say = [&](const std::string& text) {
+  write_log_head(log, options, scene, out_file, resume_from != nullptr);
+  const Say say = [&](const std::string& text) {
     std::cerr << "granjet: " << text << "\n";
     log.file() << "granjet: " << text << "\n";
   };
@@ -173,58 +227,34 @@ int run_scene(const Scene& requested, const RunOptions& options,
 
   const std::vector<std::unique_ptr<analysis::RunObserver<D>>> measurements =
       analysis::scene_measurements(scene, *sim);
-  std::optional<analysis::H5mdWriter<D>> writer;
-  if (resume_from) {
-    writer.emplace(out_file, typename analysis::H5mdWriter<D>::Resume{});
-    // A resume may have extended run.t_end.
-    writer->replace_scenes(scene_to_ini(scene), requested_ini(requested, support));
-  } else {
-    writer.emplace(out_file, run_metadata<D>(scene, requested_ini(requested, support), options),
-                   sim->particles().size());
-  }
+  const std::unique_ptr<analysis::H5mdWriter<D>> writer =
+      open_run_file<D>(out_file, scene, requested_ini(requested, support), options,
+                       sim->particles().size(), resume_from != nullptr);
   FrameOutput<D> frames(*writer, scene);
   ProgressRows<D> progress(log.report(), scene, backend.counts_events);
   RunObservers<D> observers;
   CheckpointSchedule<D> checkpoints(scene, [&] { write_checkpoint(*sim, observers, *writer); });
   for (const auto& m : measurements) observers.push_back(m.get());
   observers.insert(observers.end(), {&frames, &progress, &checkpoints});
-  const double t_end = scene.run.t_end;
   if (resume_from) {
     restore_checkpoint(*sim, observers, *resume_from);
-    if (sim->time() > t_end)
-      throw InputError("run.t_end", std::to_string(t_end) + " lies before the checkpoint at t = " +
-                                        std::to_string(sim->time()));
+    if (sim->time() > scene.run.t_end)
+      throw InputError("run.t_end",
+                       std::to_string(scene.run.t_end) +
+                           " lies before the checkpoint at t = " + std::to_string(sim->time()));
   } else {
     frames.start(*sim);
   }
 
   log.report() << (resume_from ? "continuing " : "writing ") << out_file.string() << " ("
-               << options.backend << ", " << D << "D, " << sim->particles().size()
-               << " grains, t_end " << t_end << ")\n";
+               << backend.name << ", " << D << "D, " << sim->particles().size() << " grains, t_end "
+               << scene.run.t_end << ")\n";
   progress.header();
   const Interrupts interrupts;
   sim->stop_when(&interrupts.stop_flag());
-  std::string status = "complete";
-  try {
-    observe_until(*sim, t_end, 0.5 * scene.dt(), observers, interrupts);
-    if (interrupts.signal() != 0) {
-      write_checkpoint(*sim, observers, *writer);
-      status = "interrupted";
-      const std::filesystem::path kept = writer->abandon(status);
-      std::ostringstream text;
-      text << "interrupted (signal " << interrupts.signal() << ") at t = " << sim->time()
-           << "; the run is kept in " << kept.string()
-           << "; go on with: granjet resume " << kept.string();
-      say(text.str());
-    } else {
-      frames.finish(*sim);
-    }
-  } catch (const BlowUpError& e) {
-    const std::filesystem::path kept = writer->abandon(e.what());
-    say(e.what());
-    say("frames written so far are kept in " + kept.string());
-    status = e.what();
-  }
+  const std::string status =
+      observe_to_end(*sim, scene, observers, frames, *writer, interrupts, say);
+
   const double wall = progress.wall_seconds();
   nlohmann::json summary = summary_json(scene, backend, *sim, grains_initial, wall, status);
   if (!warnings.empty()) summary["warnings"] = warnings;
