@@ -20,9 +20,8 @@ SceneSupport scene_support(const Scene& scene) {
   if (scene.output.force || scene.output.contacts)
     support.unsupported.push_back(
         {"output.fields",
-         "force and contacts need contact forces; the event_driven backend's "
-         "hard spheres exchange impulses only (use --backend soft_dem, or drop "
-         "them)"});
+         "force and contacts need contact forces; the event_driven backend's hard spheres "
+         "exchange impulses only (use --backend soft_dem, or drop them)"});
   if (scene.output.omega)
     support.unsupported.push_back(
         {"output.fields",
