@@ -185,15 +185,18 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
   out.close();
 }
 
-std::filesystem::path store_ensemble(const std::filesystem::path& file,
-                                     const EnsembleResult& result,
-                                     const std::filesystem::path& published_as) {
+std::filesystem::path fields_sidecar(const std::filesystem::path& file) {
+  std::filesystem::path xmf = file;
+  return xmf.replace_extension(".fields.xmf");
+}
+
+EnsembleResult write_ensemble(const std::filesystem::path& file, std::span<const RunResult> runs,
+                              int dimension, const std::filesystem::path& published_as) {
+  EnsembleResult result = combine_runs(runs, dimension);
   write_analysis_hdf5(file, result);
   const std::filesystem::path& name = published_as.empty() ? file : published_as;
-  std::filesystem::path xmf = name;
-  xmf.replace_extension(".fields.xmf");
-  write_fields_xdmf(xmf, name.filename().string(), result);
-  return xmf;
+  write_fields_xdmf(fields_sidecar(name), name.filename().string(), result);
+  return result;
 }
 
 }  // namespace granjet::analysis

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,12 +33,15 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
 // "stress.rz" -> "stress/rz".
 std::string field_path(std::string name);
 
-// write_analysis_hdf5 and write_fields_xdmf, the one way every command stores an analysis:
-// /fields and /analysis into `file`, and a sidecar with the extension .fields.xmf beside the name
-// the file will have, `published_as` (a run's file is written as .partial and renamed last;
-// empty: `file` itself). Returns the sidecar's path.
-std::filesystem::path store_ensemble(const std::filesystem::path& file,
-                                     const EnsembleResult& result,
-                                     const std::filesystem::path& published_as = {});
+// The .fields.xmf sidecar that shows the fields of `file` in ParaView, beside it.
+std::filesystem::path fields_sidecar(const std::filesystem::path& file);
+
+// The one way every command stores an analysis: `runs` combined (mean and spread over seeds,
+// fits; combine_runs), written as /fields and /analysis into `file` (write_analysis_hdf5), and
+// the fields' sidecar (write_fields_xdmf) beside the name the file will have, `published_as` (a
+// run's file is written as .partial and renamed last; empty: `file` itself). Returns the
+// combined result, for the JSON summaries.
+EnsembleResult write_ensemble(const std::filesystem::path& file, std::span<const RunResult> runs,
+                              int dimension, const std::filesystem::path& published_as = {});
 
 }  // namespace granjet::analysis

@@ -16,6 +16,7 @@ namespace {
 
 constexpr const char* kParameters = "/parameters/granjet";
 constexpr const char* kScene = "/parameters/granjet/scene";
+constexpr const char* kRequestedScene = "/parameters/granjet/requested_scene";
 constexpr const char* kMembers = "/parameters/granjet/members";
 constexpr const char* kCheckpointTime = "/checkpoint/app/time";  // run_command's checkpoints
 constexpr const char* kFrameStep = "/particles/all/position/step";
@@ -218,6 +219,7 @@ FileSummary read_summary(const std::filesystem::path& file) {
     throw InputError(file.string(), "stores dimension " + std::to_string(summary.dimension) +
                                         "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
+  if (in.exists(kRequestedScene)) summary.requested_scene_ini = in.string_dataset(kRequestedScene);
   if (in.exists(kCheckpointTime)) {
     summary.checkpoint = true;
     summary.checkpoint_time = in.element<double>(kCheckpointTime, 0);
@@ -259,6 +261,9 @@ void print_summary(const FileSummary& summary, std::ostream& out) {
   out << "\nobservables: " << summary.observable_rows << " rows\n"
       << "scene: " << std::count(summary.scene_ini.begin(), summary.scene_ini.end(), '\n')
       << " lines of INI stored\n";
+  if (!summary.requested_scene_ini.empty())
+    out << "requested scene: stored too (the backend adapted it: /parameters/granjet/"
+           "requested_scene)\n";
   if (summary.checkpoint)
     out << "checkpoint at t = " << summary.checkpoint_time << ": granjet resume continues from it\n";
   if (!summary.members.empty()) {

@@ -26,7 +26,8 @@ struct FileSummary {
   double last_time = 0.0;
   std::int64_t last_step = 0;
   std::size_t observable_rows = 0;
-  std::string scene_ini;
+  std::string scene_ini;            // as the backend ran it
+  std::string requested_scene_ini;  // where the backend adapted the scene; else empty
   // An ensemble file's member runs, relative to its directory; empty for a run's file.
   std::vector<std::string> members;
   bool checkpoint = false;  // whether the file holds one (a .partial that can be resumed)

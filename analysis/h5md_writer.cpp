@@ -28,6 +28,9 @@ constexpr hsize_t kChunkContacts = 4096;
 // Rows per chunk of the scalar time series (step, time, observables).
 constexpr hsize_t kChunkRows = 1024;
 
+constexpr const char* kScene = "/parameters/granjet/scene";
+constexpr const char* kRequestedScene = "/parameters/granjet/requested_scene";
+
 constexpr std::array<const char*, 4> kEnergies = {"kinetic_energy", "rotational_energy",
                                                   "elastic_energy", "energy_dissipated"};
 
@@ -63,7 +66,7 @@ class H5mdFile {
   // dropped, and the status is "running" again.
   H5mdFile(std::filesystem::path path, int dimension);
   void write_checkpoint(StateArchive archive);
-  void replace_scene(const std::string& scene_ini);
+  void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);
   void write_frame(std::int64_t step, double time, const FrameRows& rows);
   std::size_t rows() const { return max_grains_; }
   // Which optional per-frame data the file stores.
@@ -306,7 +309,9 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   write_attribute("/parameters/granjet", "dimension", H5T_NATIVE_INT, dataspace({}).get(),
                   &dimension_);
   write_string_attribute("/parameters/granjet", "status", "running");
-  write_string_dataset("/parameters/granjet/scene", meta.scene_ini);
+  write_string_dataset(kScene, meta.scene_ini);
+  if (!meta.requested_scene_ini.empty())
+    write_string_dataset(kRequestedScene, meta.requested_scene_ini);
   if (!meta.members.empty()) {
     std::string lines;
     for (const std::string& member : meta.members) lines += member + "\n";
@@ -390,11 +395,13 @@ H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
 }
 
-void H5mdFile::replace_scene(const std::string& scene_ini) {
+void H5mdFile::replace_scenes(const std::string& scene_ini,
+                              const std::string& requested_scene_ini) {
   require_open();
-  const char* name = "/parameters/granjet/scene";
-  ctx_.check(H5Ldelete(file_.get(), name, H5P_DEFAULT), "replace", name);
-  write_string_dataset(name, scene_ini);
+  for (const char* name : {kScene, kRequestedScene})
+    if (exists(name)) ctx_.check(H5Ldelete(file_.get(), name, H5P_DEFAULT), "replace", name);
+  write_string_dataset(kScene, scene_ini);
+  if (!requested_scene_ini.empty()) write_string_dataset(kRequestedScene, requested_scene_ini);
 }
 
 H5mdFile::Dataset H5mdFile::open_series(const std::string& name) const {
@@ -673,8 +680,9 @@ void H5mdWriter<D>::write_checkpoint(const StateArchive& archive) {
 }
 
 template <int D>
-void H5mdWriter<D>::replace_scene(const std::string& scene_ini) {
-  file_->replace_scene(scene_ini);
+void H5mdWriter<D>::replace_scenes(const std::string& scene_ini,
+                                   const std::string& requested_scene_ini) {
+  file_->replace_scenes(scene_ini, requested_scene_ini);
 }
 
 template <int D>

@@ -35,7 +35,11 @@ struct RunMetadata {
   std::string creator = "granjet";
   std::string creator_version;  // e.g. "0.1.0"
   std::string backend;          // "soft_dem" | "event_driven"
-  std::string scene_ini;        // the full resolved scene as INI text, so the run can be redone
+  std::string scene_ini;        // the full scene as the backend ran it, as INI text, so the
+                                // run can be redone
+  // The scene as requested, where the backend adapted it (/parameters/granjet/requested_scene;
+  // empty: none).
+  std::string requested_scene_ini;
   int dimension = 3;            // must match the writer's D
   // What each frame stores beyond position, velocity, radius and id (OutputSpec), and the
   // unit attributes.
@@ -92,8 +96,9 @@ class H5mdWriter {
   // Stores the run's state (with the count of frames and observables so far) as /checkpoint,
   // replacing the last one, and flushes.
   void write_checkpoint(const StateArchive& archive);
-  // The stored scene (RunMetadata::scene_ini), replaced: a resume that extends run.t_end.
-  void replace_scene(const std::string& scene_ini);
+  // The stored scenes (RunMetadata::scene_ini, requested_scene_ini), replaced: a resume that
+  // extends run.t_end.
+  void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);
   // Marks the run complete, closes the file and writes the .xmf sidecar next to the final
   // name. Returns the .partial path, where the caller may add what else the run produced
   // (/fields, /analysis) before publish() renames it: a file under its final name is complete.

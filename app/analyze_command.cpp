@@ -69,17 +69,18 @@ analysis::RunResult analyse_frames(const std::filesystem::path& file,
 
 // The analysis goes into a copy of the file, renamed over it when complete: a file that HDF5
 // can read but not extend (damaged), or a crash half-way, leaves the original as it was.
-std::filesystem::path store_into_copy(const std::filesystem::path& file,
-                                      const analysis::EnsembleResult& result) {
+template <int D>
+analysis::EnsembleResult store_into_copy(const std::filesystem::path& file,
+                                         const std::vector<analysis::RunResult>& runs) {
   std::filesystem::path copy = file;
   copy += ".partial";
   const analysis::FileLock lock(copy);
   std::filesystem::copy_file(file, copy, std::filesystem::copy_options::overwrite_existing);
   try {
-    const std::filesystem::path xmf = analysis::store_ensemble(copy, result, file);
+    analysis::EnsembleResult result = analysis::write_ensemble(copy, runs, D, file);
     std::filesystem::rename(copy, file);
-    return xmf;
-  } catch (const std::runtime_error& e) {
+    return result;
+  } catch (const std::exception& e) {
     std::filesystem::remove(copy);
     throw InputError(file.string(), std::string("cannot take its analysis (") + e.what() +
                                         "); the file is left as it was");
@@ -104,10 +105,10 @@ int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
     runs.push_back(analyse_frames<D>(file, options.window, used));
     frames += used;
   }
-  const analysis::EnsembleResult result = analysis::combine_runs(runs, D);
-  const std::filesystem::path xmf = store_into_copy(options.file, result);
+  const analysis::EnsembleResult result = store_into_copy<D>(options.file, runs);
   out << "analysed " << frames << " frames of " << runs.size() << " run(s); wrote /fields and "
-      << "/analysis into " << options.file.string() << " and " << xmf.string() << "\n";
+      << "/analysis into " << options.file.string() << " and "
+      << analysis::fields_sidecar(options.file).string() << "\n";
   if (!options.summary.empty())
     write_json_atomically(options.summary, analysis::to_json(result));
   return 0;

@@ -1,45 +1,60 @@
 #include "app/backend_factory.hpp"
 
-#include <iomanip>
-#include <sstream>
-
+#include "app/soft_dem_support.hpp"
 #include "core/errors.hpp"
 #include "event_driven/ed_simulator.hpp"
 #include "event_driven/scene_support.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace granjet {
+namespace {
 
-std::vector<std::string> backend_names() { return {"soft_dem", "event_driven"}; }
-
-void check_backend(const std::string& backend, const Scene& /*scene*/) {
-  // Both run every scene (event_driven/scene_support.hpp says what the hard-core version
-  // changes).
-  if (backend == "soft_dem" || backend == "event_driven") return;
-  std::string allowed;
-  for (const std::string& name : backend_names()) allowed += (allowed.empty() ? "" : ", ") + name;
-  throw InputError("--backend", "'" + backend + "' is not available; allowed: " + allowed);
+const std::vector<Backend>& backends() {
+  static const std::vector<Backend> all = {
+      {"soft_dem", /*counts_events=*/false, soft_dem_support, dem::make_dem_simulator<2>,
+       dem::make_dem_simulator<3>},
+      {"event_driven", /*counts_events=*/true, ed::scene_support, ed::make_ed_simulator<2>,
+       ed::make_ed_simulator<3>}};
+  return all;
 }
 
-std::vector<std::string> backend_notes(const std::string& backend, const Scene& scene) {
-  if (backend == "event_driven") return {ed::scene_note(scene)};
-  // Coarse steps change the dissipation without any blow-up to report (an HCS at dt = 0.2 t_c
-  // with AB2 cools 62% too slowly, docs/run_time_vs_error.md).
-  if (const double steps = scene.dt() / scene.contact.contact_time; steps > 0.05 + 1e-9) {
-    std::ostringstream note;
-    note << "run.dt = " << std::setprecision(3) << steps << " t_c: coarser than 0.05 t_c, where "
-         << "one collision's e and t_c stay within 1% (docs/run_time_vs_error.md); dissipation "
-         << "and cooling rates are biased, and dense jets blow up from 0.15-0.2 t_c";
-    return {note.str()};
-  }
-  return {};
+}  // namespace
+
+std::vector<std::string> backend_names() {
+  std::vector<std::string> names;
+  for (const Backend& b : backends()) names.push_back(b.name);
+  return names;
+}
+
+const Backend& backend_named(const std::string& name) {
+  for (const Backend& b : backends())
+    if (b.name == name) return b;
+  std::string allowed;
+  for (const std::string& known : backend_names()) allowed += (allowed.empty() ? "" : ", ") + known;
+  throw InputError("--backend", "'" + name + "' is not available; allowed: " + allowed);
+}
+
+SceneSupport check_backend(const std::string& backend, const Scene& scene) {
+  SceneSupport support = backend_named(backend).support(scene);
+  if (support.unsupported.empty()) return support;
+  std::string reasons;
+  for (const SceneSupport::Refusal& r : support.unsupported)
+    reasons += (reasons.empty() ? "" : "; " + r.key + ": ") + r.reason;
+  throw InputError(support.unsupported.front().key, reasons);
+}
+
+std::string describe(const std::string& backend, const SceneSupport::Adaptation& adaptation) {
+  return backend + ": " + adaptation.key + " = " + adaptation.requested + " becomes " +
+         adaptation.resolved + " (" + adaptation.reason + ")";
 }
 
 template <int D>
 std::unique_ptr<Simulator<D>> make_simulator(const std::string& backend, const Scene& scene) {
-  check_backend(backend, scene);
-  if (backend == "event_driven") return ed::make_ed_simulator<D>(scene);
-  return dem::make_dem_simulator<D>(scene);
+  const Scene resolved = check_backend(backend, scene).resolved;
+  if constexpr (D == 2)
+    return backend_named(backend).make_2d(resolved);
+  else
+    return backend_named(backend).make_3d(resolved);
 }
 
 template std::unique_ptr<Simulator<2>> make_simulator<2>(const std::string&, const Scene&);

@@ -1,4 +1,6 @@
-// The one place where a backend name becomes a Simulator.
+// The backends, each with what it declares (as OpenMM's platforms do): how it counts its work,
+// and what it makes of a scene (core/scene_support.hpp): features it refuses, keys it adapts,
+// what it ignores. The one place where a backend name becomes a Simulator.
 #pragma once
 
 #include <memory>
@@ -6,20 +8,36 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "core/scene_support.hpp"
 #include "core/simulator.hpp"
 
 namespace granjet {
 
+struct Backend {
+  std::string name;
+  // Event-driven: its work is events and collisions (progress rows, summary), not time steps
+  // and contacts.
+  bool counts_events = false;
+  SceneSupport (*support)(const Scene& scene) = nullptr;
+  // Its simulator of a scene it resolved.
+  std::unique_ptr<Simulator<2>> (*make_2d)(const Scene& resolved) = nullptr;
+  std::unique_ptr<Simulator<3>> (*make_3d)(const Scene& resolved) = nullptr;
+};
+
 std::vector<std::string> backend_names();
 
-// Throws InputError naming --backend when the name is unknown or the backend cannot run the
-// scene.
-void check_backend(const std::string& backend, const Scene& scene);
+// Throws InputError naming --backend when no backend has the name.
+const Backend& backend_named(const std::string& name);
 
-// What the backend ignores or replaces in the scene, as lines for the user (may be empty).
-std::vector<std::string> backend_notes(const std::string& backend, const Scene& scene);
+// What the backend makes of the scene. Throws InputError naming --backend for an unknown
+// backend, and naming the key of a feature it cannot run.
+SceneSupport check_backend(const std::string& backend, const Scene& scene);
 
-// Calls check_backend first.
+// One adaptation as a line for the user: "event_driven: wall.kind = tethered becomes fixed
+// (why)".
+std::string describe(const std::string& backend, const SceneSupport::Adaptation& adaptation);
+
+// The backend's simulator of the scene as it resolves it (check_backend first).
 template <int D>
 std::unique_ptr<Simulator<D>> make_simulator(const std::string& backend, const Scene& scene);
 

@@ -173,8 +173,10 @@ void plan_group(const CampaignFile& campaign, std::size_t index, const PlanOptio
         for (const std::string& o : quick_overrides(base_scene, g.quick_fraction))
           run.overrides.push_back(o);
       try {
-        run.scene = load_scene(g.scene, run.overrides);
-        check_backend(run.backend, run.scene);
+        const SceneSupport support = check_backend(run.backend, load_scene(g.scene, run.overrides));
+        run.scene = support.resolved;
+        for (const SceneSupport::Adaptation& a : support.adaptations)
+          run.adaptations.push_back(describe(run.backend, a));
         check_run_budget(run.scene, run.backend, physical_memory_bytes());
       } catch (const InputError& e) {
         rethrow_in_group(e, g);

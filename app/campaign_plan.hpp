@@ -1,7 +1,7 @@
 // A campaign file expanded into its runs and ensembles: every group's product of swept values
-// times its seeds, each run with a stable name, its fully resolved scene (and that scene's hash,
-// by which a finished run is recognised), its files under the output directory and an estimate
-// of its cost.
+// times its seeds, each run with a stable name, its fully resolved scene (every key, as its
+// backend runs it) and that scene's hash, by which a finished run is recognised, its files under
+// the output directory and an estimate of its cost.
 //
 //   DIR/<group>/<point>.seed<N>.{ini,h5,json,log}   one run (resolved scene, output, summary, log)
 //   DIR/<group>/<point>.{h5,json}                   the ensemble of the point's seeds
@@ -42,12 +42,13 @@ struct PlannedRun {
   std::uint64_t seed = 0;
   std::string name;       // "<group>/<point>.seed<N>": stable, unique, a path under DIR
   std::string backend;
-  std::vector<std::string> overrides;  // as --set, in the order applied to the group's scene
-  Scene scene;                          // resolved
-  std::string scene_ini;                // scene_to_ini(scene)
-  std::string hash;                     // of backend and scene_ini
+  std::vector<std::string> overrides;    // as --set, in the order applied to the group's scene
+  Scene scene;                           // resolved, as the backend runs it (check_backend)
+  std::vector<std::string> adaptations;  // what the backend changed of the requested scene
+  std::string scene_ini;                 // scene_to_ini(scene)
+  std::string hash;                      // of backend and scene_ini
   RunCost cost;
-  std::filesystem::path base;           // DIR/<group>/<point>.seed<N> (add .h5, .json, ...)
+  std::filesystem::path base;  // DIR/<group>/<point>.seed<N> (add .h5, .json, ...)
 
   std::filesystem::path file(const char* extension) const { return base.string() + extension; }
 };
@@ -76,12 +77,9 @@ CampaignPlan plan_campaign(const CampaignFile& campaign, const PlanOptions& opti
 // stored scene and backend give the same hash is that run's output.
 std::string scene_hash(const std::string& backend, const std::string& scene_ini);
 
-// The one-core rates behind RunCost::seconds: a guide for planning, not a benchmark. Measured
-// on this project's machine (AMD EPYC, family 26, AVX-512) at the commit that introduced
-// campaigns, as `granjet run` reports them (particle_steps_per_second counts the grains
-// present): jet3d 5.2e7, the scattering runs' 990 d column (D_jet = 4.5 d, t_end = 1020) 7.2e7,
-// jet2d frictionless 9.2e7, jet2d at mu_p = 1, t_c = 0.01 1.1e8; the event-driven jet2d 5.0e5
-// grains x d/u0 of simulated time per second.
+// The one-core rates behind RunCost::seconds: a guide for planning, not a benchmark, rounded from
+// what `granjet run` reported for the shipped jets at the commit that introduced campaigns
+// (particle_steps_per_second counts the grains present).
 inline constexpr double kSoftParticleStepsPerSecond3d = 6.5e7;
 inline constexpr double kSoftParticleStepsPerSecond2d = 9.5e7;
 inline constexpr double kEventDrivenGrainTimePerSecond = 5.0e5;

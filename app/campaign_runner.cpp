@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "analysis/h5md_reader.hpp"
+#include "app/backend_factory.hpp"
 #include "app/campaign_manifest.hpp"
 #include "app/ensemble_output.hpp"
 #include "app/scene_file.hpp"
@@ -31,15 +32,16 @@ std::optional<nlohmann::json> read_json(const std::filesystem::path& file) {
 }
 
 // Whether `file` is a granjet output of this run's backend and resolved scene. The stored
-// scene is resolved again by the current parser, so a key added since (whose default keeps
-// the old behaviour) does not make finished runs look foreign.
+// scene is resolved again, by the current parser, so a key added since (whose default keeps
+// the old behaviour) does not make finished runs look foreign, and by the backend, since files
+// written before it declared its adaptations store the scene as requested.
 bool holds_run(const std::filesystem::path& file, const PlannedRun& run) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
   try {
     const analysis::FileSummary s = analysis::read_summary(file);
     std::istringstream stored(s.scene_ini);
-    const Scene scene = parse_scene(stored, file.string(), {});
+    const Scene scene = check_backend(s.backend, parse_scene(stored, file.string(), {})).resolved;
     return scene_hash(s.backend, scene_to_ini(scene)) == run.hash;
   } catch (const std::exception&) {
     return false;  // unreadable, or a scene this build cannot parse: not this run's output
@@ -256,8 +258,8 @@ class Coordinator {
     const PlannedRun& first = plan_.runs[ens.runs.front()];
     const nlohmann::json header = {
         {"scene", first.scene.name}, {"backend", first.backend}, {"dimension", first.scene.dimension}};
-    const int combined = write_ensemble(ens.file(".h5"), ens.file(".json"), header, members,
-                                        first.scene.dimension);
+    const int combined =
+        merge_ensemble(ens.file(".h5"), ens.file(".json"), header, members, first.scene.dimension);
     if (combined == 0) std::filesystem::remove(ens.file(".json"));
     entry = {{"group", campaign_.groups[ens.group].name},
              {"point", ens.point},
@@ -328,7 +330,9 @@ ChildProcess start_run(const PlannedRun& run) {
     std::filesystem::remove(run.file(stale));
   {
     std::ofstream ini(run.file(".ini"));
-    ini << "# " << run.name << ": the resolved scene of this campaign run\n" << run.scene_ini;
+    ini << "# " << run.name << ": the resolved scene of this campaign run\n";
+    for (const std::string& adaptation : run.adaptations) ini << "# " << adaptation << "\n";
+    ini << run.scene_ini;
     if (!ini.flush()) throw std::runtime_error("cannot write " + run.file(".ini").string());
   }
   std::ofstream(run.file(".log"), std::ios::trunc);

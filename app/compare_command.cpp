@@ -48,8 +48,7 @@ int compare_command(const CompareOptions& options, std::ostream& out) {
   const Scene scene = load_scene(options.scene_file, options.overrides);
   const std::vector<std::string> backends = backend_names();
   for (const std::string& backend : backends) {
-    check_backend(backend, scene);
-    check_run_budget(scene, backend, physical_memory_bytes());
+    check_run_budget(check_backend(backend, scene).resolved, backend, physical_memory_bytes());
   }
   std::filesystem::create_directories(options.out_dir);
 

@@ -1,7 +1,6 @@
-// An ensemble's outputs (spec §5: error bars are the spread over independent seeds), written the
-// same way by `granjet run --seeds` and by campaigns: each member run's analysis is read back
-// from its file, combined over the seeds, and stored in the ensemble file (/fields, /analysis,
-// a .fields.xmf beside it) and its JSON summary.
+// An ensemble's outputs, written the same way by `granjet run --seeds` and by campaigns: the
+// ensemble file (analysis/ensemble_file.hpp) of the member runs that hold an analysis, and its
+// JSON summary.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +23,7 @@ std::filesystem::path member_file(const std::filesystem::path& file, std::uint64
 // holds the combined analysis; an empty `summary` writes none. Members without a stored analysis
 // (a blown-up run, a window that never started) are left out. Returns how many members were
 // combined; with none, nothing is written.
-int write_ensemble(const std::filesystem::path& out_file, const std::filesystem::path& summary,
+int merge_ensemble(const std::filesystem::path& out_file, const std::filesystem::path& summary,
                    nlohmann::json header, const std::vector<EnsembleMember>& members,
                    int dimension);
 

@@ -6,7 +6,9 @@
 namespace granjet {
 
 ProgressTable::ProgressTable(std::ostream& out, double t_end, bool quiet, bool event_driven)
-    : out_(out), t_end_(t_end), quiet_(quiet), event_driven_(event_driven) {
+    : out_(out), t_end_(t_end), quiet_(quiet), event_driven_(event_driven) {}
+
+void ProgressTable::header() {
   if (quiet_) return;
   char line[200];
   std::snprintf(line, sizeof line, "%10s %7s %11s %8s %11s %11s %11s %13s %9s\n", "time", "done",

@@ -14,6 +14,8 @@ namespace granjet {
 class ProgressTable {
  public:
   ProgressTable(std::ostream& out, double t_end, bool quiet, bool event_driven);
+  // The column titles, once before the first row.
+  void header();
   void row(double time, std::int64_t grains, const SimStats& stats, const EnergyBalance& energy);
   double elapsed_seconds() const;
 

@@ -13,9 +13,9 @@ std::string number(double v) {
 
 }  // namespace
 
-std::vector<std::string> run_warnings(const Scene& s, const std::string& backend) {
+std::vector<std::string> run_warnings(const Scene& s, const Backend& backend) {
   std::vector<std::string> warnings;
-  if (backend != "event_driven" && s.run.t_end < s.dt())
+  if (!backend.counts_events && s.run.t_end < s.dt())
     warnings.push_back("run.t_end = " + number(s.run.t_end) + " is shorter than one time step (" +
                        number(s.dt()) + "): the run stores its start and one step");
   if (s.kind == SceneKind::kJet && s.analysis.enabled && s.run.t_end <= s.analysis.window_start)

@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "app/backend_factory.hpp"
 #include "core/scene.hpp"
 
 namespace granjet {
 
-std::vector<std::string> run_warnings(const Scene& scene, const std::string& backend);
+// `scene` as the backend resolved it.
+std::vector<std::string> run_warnings(const Scene& scene, const Backend& backend);
 
 }  // namespace granjet

@@ -6,7 +6,7 @@
 
 #include <optional>
 
-#include "app/inline_analysis.hpp"
+#include "analysis/inline_analysis.hpp"
 #include "app/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
@@ -19,7 +19,7 @@ void BM_JetInlineAnalysis(benchmark::State& state) {
   const granjet::Scene scene = granjet::load_scene(
       file, {"analysis.window_start=5", "analysis.window_end=1000", "run.t_end=1000"});
   auto sim = granjet::dem::make_dem_simulator<D>(scene);
-  std::optional<granjet::InlineAnalysis<D>> analysis;
+  std::optional<granjet::analysis::InlineAnalysis<D>> analysis;
   if (state.range(0)) analysis.emplace(scene, *sim);
   sim->advance_to(5.0);
   if (analysis) analysis->observe(*sim);

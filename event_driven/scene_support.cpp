@@ -3,36 +3,49 @@
 #include <sstream>
 
 namespace granjet::ed {
-
 namespace {
 
-bool touching_jet(const Scene& scene) {
-  return scene.kind == SceneKind::kJet && scene.jet.spacing < kMinJetSpacing;
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
 }
 
 }  // namespace
 
-Scene hard_scene(const Scene& scene) {
-  Scene hard = scene;
-  if (hard.wall.kind == WallKind::kTethered) hard.wall.kind = WallKind::kFixed;
-  if (touching_jet(scene)) hard.jet.spacing = kMinJetSpacing;
-  return hard;
+SceneSupport scene_support(const Scene& scene) {
+  SceneSupport support;
+  support.resolved = scene;
+  Scene& hard = support.resolved;
+  if (scene.output.force || scene.output.contacts)
+    support.unsupported.push_back(
+        {"output.fields",
+         "force and contacts need contact forces; the event_driven backend's hard spheres "
+         "exchange impulses only (use --backend soft_dem, or drop them)"});
+  if (scene.output.omega)
+    support.unsupported.push_back(
+        {"output.fields",
+         "omega: the grains of this run do not turn (smooth hard spheres); drop it"});
+  if (scene.has_wall() && scene.wall.kind == WallKind::kTethered) {
+    hard.wall.kind = WallKind::kFixed;
+    support.adaptations.push_back({"wall.kind", "tethered", "fixed",
+                                   "hard grains have no springs: the tethered target becomes "
+                                   "fixed wall grains, spec §4"});
+  }
+  if (scene.kind == SceneKind::kJet && scene.jet.spacing < kMinJetSpacing) {
+    hard.jet.spacing = kMinJetSpacing;
+    support.adaptations.push_back({"jet.spacing", number(scene.jet.spacing), number(kMinJetSpacing),
+                                   "hard grains in contact have no collision order"});
+  }
+  if (scene.frictional())
+    support.notes.push_back("contact.friction = " + number(scene.contact.friction) +
+                            " is ignored (hard grains are frictionless)");
+  support.notes.push_back(
+      "contact.contact_time, run.dt, run.integrator and run.skin have no hard-core meaning and "
+      "are ignored");
+  return support;
 }
 
-std::string scene_note(const Scene& scene) {
-  std::ostringstream note;
-  note << "event_driven: ";
-  if (scene.frictional())
-    note << "contact.friction = " << scene.contact.friction
-         << " is ignored (hard grains are frictionless); ";
-  if (scene.has_wall() && scene.wall.kind == WallKind::kTethered)
-    note << "the tethered target becomes fixed wall grains (wall.kind = fixed, spec §4); ";
-  if (touching_jet(scene))
-    note << "jet.spacing = " << scene.jet.spacing << " becomes " << kMinJetSpacing
-         << " (hard grains in contact have no collision order); ";
-  note << "contact.contact_time, run.dt, run.integrator and run.skin have no hard-core meaning "
-          "and are ignored";
-  return note.str();
-}
+Scene hard_scene(const Scene& scene) { return scene_support(scene).resolved; }
 
 }  // namespace granjet::ed

@@ -1,24 +1,24 @@
-// What the event-driven backend makes of a scene, decided once before a run [spec §8]. It runs
-// every scene kind and refuses nothing: the soft-contact settings have no hard-core meaning and
-// are ignored, a tethered target becomes fixed wall grains (spec §4), a plate target stays a
-// plate (event_driven/plate.hpp), and a jet lattice whose grains touch is spaced by 1e-3 d (hard
-// grains in contact collide infinitely often at once when the jet hits the target: their
-// collision order is undefined).
+// What the event-driven backend makes of a scene [spec §8], declared once before a run
+// (core/scene_support.hpp). It runs every scene kind. It refuses output.fields that hard
+// spheres do not have: force and contacts (they exchange impulses only) and omega (smooth hard
+// spheres do not turn). It adapts two keys: a tethered target becomes fixed wall grains
+// (spec §4), and a jet lattice whose grains touch is spaced by 1e-3 d (hard grains in contact
+// collide infinitely often at once when the jet hits the target: their collision order is
+// undefined). A plate target stays a plate (event_driven/plate.hpp). The soft-contact settings
+// have no hard-core meaning and are ignored.
 #pragma once
 
-#include <string>
-
 #include "core/scene.hpp"
+#include "core/scene_support.hpp"
 
 namespace granjet::ed {
 
 // The smallest lattice spacing of a jet run by the event-driven backend, in d.
 inline constexpr double kMinJetSpacing = 1.001;
 
-// The scene as the backend runs it.
-Scene hard_scene(const Scene& scene);
+SceneSupport scene_support(const Scene& scene);
 
-// The one-line note that says what changed and what is ignored, naming the keys.
-std::string scene_note(const Scene& scene);
+// The scene as the backend runs it: scene_support(scene).resolved.
+Scene hard_scene(const Scene& scene);
 
 }  // namespace granjet::ed

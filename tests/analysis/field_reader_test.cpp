@@ -67,7 +67,7 @@ class FieldReader : public ::testing::Test {
 TEST_F(FieldReader, ReadsBackEveryStoredValueBitForBit) {
   const RunResult stored = measured_run(7);
   const fs::path file = dir_ / "run.h5";
-  store_ensemble(file, combine_runs(std::vector<RunResult>{stored}, 3));
+  write_ensemble(file, std::vector<RunResult>{stored}, 3);
   ASSERT_TRUE(has_analysis(file));
   const RunResult read = read_run_result(file);
   EXPECT_EQ(read.edges.lateral, stored.edges.lateral);
@@ -84,7 +84,7 @@ TEST_F(FieldReader, EnsemblesFromFilesEqualEnsemblesFromMemory) {
   std::vector<RunResult> files;
   for (std::size_t k = 0; k < memory.size(); ++k) {
     const fs::path f = dir_ / ("seed" + std::to_string(k) + ".h5");
-    store_ensemble(f, combine_runs(std::vector<RunResult>{memory[k]}, 3));
+    write_ensemble(f, std::vector<RunResult>{memory[k]}, 3);
     files.push_back(read_run_result(f));
   }
   const EnsembleResult a = combine_runs(memory, 3), b = combine_runs(files, 3);
@@ -101,7 +101,7 @@ TEST_F(FieldReader, EnsemblesFromFilesEqualEnsemblesFromMemory) {
 
 TEST_F(FieldReader, RefusesEnsemblesAndFilesWithoutAnalysis) {
   const fs::path ensemble = dir_ / "ensemble.h5";
-  store_ensemble(ensemble, combine_runs(std::vector<RunResult>{measured_run(1), measured_run(2)}, 3));
+  write_ensemble(ensemble, std::vector<RunResult>{measured_run(1), measured_run(2)}, 3);
   EXPECT_THROW(read_run_result(ensemble), std::runtime_error);
   EXPECT_FALSE(has_analysis(dir_ / "missing.h5"));
   EXPECT_THROW(read_run_result(dir_ / "missing.h5"), std::runtime_error);

@@ -11,8 +11,8 @@
 
 #include "analysis/analysis_json.hpp"
 #include "app/backend_factory.hpp"
-#include "app/gas_observer.hpp"
-#include "app/inline_analysis.hpp"
+#include "analysis/gas_observer.hpp"
+#include "analysis/inline_analysis.hpp"
 #include "app/scene_file.hpp"
 
 namespace granjet {
@@ -134,9 +134,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 // The inline analysis of a run as the app drives it, from t = 0 (or a checkpoint) to t_end.
 template <int D>
-void drive(Simulator<D>& sim, InlineAnalysis<D>& fields, double t_end) {
+void drive(Simulator<D>& sim, analysis::InlineAnalysis<D>& fields, double t_end) {
   while (sim.time() < t_end - 1e-9) {
-    sim.advance_to(std::min(t_end, std::max(fields.next_time(), sim.time() + 1e-3)));
+    sim.advance_to(std::min(t_end, fields.next_time(sim)));
     fields.observe(sim);
   }
 }
@@ -146,7 +146,7 @@ void drive(Simulator<D>& sim, InlineAnalysis<D>& fields, double t_end) {
 template <int D>
 void check_analysis(const std::string& backend, const Scene& scene) {
   auto straight = make_simulator<D>(backend, scene);
-  InlineAnalysis<D> straight_fields(scene, *straight);
+  analysis::InlineAnalysis<D> straight_fields(scene, *straight);
   drive(*straight, straight_fields, 2.0);
   ASSERT_TRUE(straight_fields.window_sampled());  // the checkpoint falls inside the window
   StateArchive archive;
@@ -157,7 +157,7 @@ void check_analysis(const std::string& backend, const Scene& scene) {
   const std::vector<analysis::RunResult> expected{straight_fields.finish()};
 
   auto resumed = make_simulator<D>(backend, scene);
-  InlineAnalysis<D> resumed_fields(scene, *resumed);
+  analysis::InlineAnalysis<D> resumed_fields(scene, *resumed);
   resumed->restore(archive);
   StateReader reader(archive, "analysis");
   resumed_fields.visit_state(reader);
@@ -183,14 +183,14 @@ TEST(CheckpointAnalysis, ResumedGasObserverIsBitIdentical) {
   const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/hcs3d.ini",
                                  {"gas.grains=500", "run.t_end=4", "gas.equilibration=1",
                                   "gas.sample_interval=0.1"});
-  const auto run = [&](Simulator<3>& sim, GasObserver<3>& gas, double t_end) {
+  const auto run = [&](Simulator<3>& sim, analysis::GasObserver<3>& gas, double t_end) {
     while (sim.time() < t_end - 1e-9) {
-      sim.advance_to(std::min(t_end, std::max(gas.next_time(), sim.time() + 1e-3)));
+      sim.advance_to(std::min(t_end, gas.next_time(sim)));
       gas.observe(sim);
     }
   };
   auto straight = make_simulator<3>("event_driven", scene);
-  GasObserver<3> straight_gas(scene, *straight);
+  analysis::GasObserver<3> straight_gas(scene, *straight);
   run(*straight, straight_gas, 2.0);
   StateArchive archive;
   straight->checkpoint(archive);
@@ -199,7 +199,7 @@ TEST(CheckpointAnalysis, ResumedGasObserverIsBitIdentical) {
   run(*straight, straight_gas, 4.0);
 
   auto resumed = make_simulator<3>("event_driven", scene);
-  GasObserver<3> resumed_gas(scene, *resumed);
+  analysis::GasObserver<3> resumed_gas(scene, *resumed);
   resumed->restore(archive);
   StateReader reader(archive, "gas");
   resumed_gas.visit_state(reader);

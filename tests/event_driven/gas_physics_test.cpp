@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include "analysis/kinetic_theory.hpp"
-#include "app/gas_observer.hpp"
+#include "analysis/gas_observer.hpp"
 #include "core/initial_state.hpp"
 #include "event_driven/ed_simulator.hpp"
 
@@ -62,7 +62,7 @@ Scene gas_scene(const GasCase& c, double e, double t_end, double equilibration) 
 
 template <int D>
 struct GasRun {
-  GasObserver<D> observer;
+  analysis::GasObserver<D> observer;
   SimStats stats;
   double initial_energy;
   double final_energy;
@@ -72,9 +72,9 @@ template <int D>
 GasRun<D> run_gas(const Scene& scene) {
   EdSimulator<D> sim(scene, build_initial_state<D>(scene), Verification::kOn);
   const double initial = sim.energy().kinetic;
-  GasObserver<D> observer(scene, sim);
+  analysis::GasObserver<D> observer(scene, sim);
   while (sim.time() < scene.run.t_end) {
-    sim.advance_to(std::min(scene.run.t_end, observer.next_time()));
+    sim.advance_to(std::min(scene.run.t_end, observer.next_time(sim)));
     observer.observe(sim);
   }
   return {observer, sim.stats(), initial, sim.energy().kinetic};

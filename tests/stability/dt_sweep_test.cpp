@@ -202,7 +202,7 @@ TEST_P(DtSweep, B21_AcceptedDtNeverCreatesEnergySilently) {
     if (ratio >= 1.0) continue;  // refused by the scene file (run.dt must be < t_c)
     Scene coarse = shipped_scene("binary", {std::string("run.integrator=") + name_of(integrator)});
     coarse.run.dt = ratio * coarse.contact.contact_time;
-    const bool warned = !backend_notes("soft_dem", coarse).empty();
+    const bool warned = !check_backend("soft_dem", coarse).notes.empty();
     EXPECT_EQ(warned, ratio > 0.05) << "dt/t_c = " << ratio;
     if (warned) continue;
     for (const Outcome& o : {binary_run(integrator, ratio), jet_run(integrator, ratio)})

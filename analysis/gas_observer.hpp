@@ -3,32 +3,36 @@
 // the end of the run:
 // - gas: compressibility Z = P/(n T) from the collisional virial,
 //   P V = N T + (1/(D tau)) sum over collisions of r_ij . J_ij (r_ij = r_i - r_j, J_ij the
-//   impulse on i), so Z = 1 + sum r_ij . J_ij / (D N T tau) [spec §6, stress];
+//   impulse on i), so Z = 1 + sum r_ij . J_ij / (D N T tau) [spec §6, stress]; the theory it is
+//   compared with is Carnahan-Starling's for hard spheres and Henderson's for hard disks;
 // - hcs: cooling per collision, the least-squares slope of ln T against collisions per grain
-//   (2 collisions / N: each collision counts for both grains), T = sum m v^2 / (D N); and,
-//   for backends that do not count collisions too, the cooling rate in time: Haff's law
-//   T(t) = T0 / (1 + t/t0)^2 makes T^(-1/2) linear in t, and the rate -d ln T/dt at T0 is
-//   2 sqrt(T0) times its least-squares slope.
+//   (2 collisions / N: each collision counts for both grains), T = sum m v^2 / (D N), compared
+//   with hard spheres' (kinetic_theory.hpp); and, for backends that do not count collisions
+//   too, the cooling rate in time: Haff's law T(t) = T0 / (1 + t/t0)^2 makes T^(-1/2) linear
+//   in t, and the rate -d ln T/dt at T0 is 2 sqrt(T0) times its least-squares slope.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "analysis/line_fit.hpp"
+#include "analysis/run_observer.hpp"
+#include "core/scene.hpp"
 #include "core/simulator.hpp"
 
-namespace granjet {
+namespace granjet::analysis {
 
 template <int D>
-class GasObserver {
+class GasObserver final : public VisitingObserver<D, GasObserver<D>> {
  public:
+  // Looks at the run's start at once.
   GasObserver(const Scene& scene, Simulator<D>& sim);
 
-  // The next time at which the observer wants to look at the run.
-  double next_time() const { return next_; }
-  // Looks at the run at sim.time() (call after every advance_to).
-  void observe(Simulator<D>& sim);
+  double next_time(const Simulator<D>& sim) const override;
+  void observe(Simulator<D>& sim) override;
+  std::string state_group() const override { return "gas"; }
+  // "measured" (with at least two samples) and "theory".
+  void summarize(Simulator<D>& sim, nlohmann::json& summary) override;
 
   double temperature() const;  // mean over the window's samples
   double compressibility() const;
@@ -52,6 +56,11 @@ class GasObserver {
   }
 
  private:
+  SceneKind kind_;
+  double phi_;
+  double restitution_;
+  double initial_temperature_;
+  double half_step_;  // the least the run advances between two looks
   double start_;
   double interval_;
   double next_;
@@ -65,10 +74,10 @@ class GasObserver {
   // T^(-1/2) against time.
   std::int64_t samples_ = 0;
   double sum_t_ = 0.0;
-  analysis::LineFit per_collision_, in_time_;
+  LineFit per_collision_, in_time_;
 };
 
 extern template class GasObserver<2>;
 extern template class GasObserver<3>;
 
-}  // namespace granjet
+}  // namespace granjet::analysis

@@ -1,17 +1,30 @@
-#include "app/gas_observer.hpp"
+#include "analysis/gas_observer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace granjet {
+#include "analysis/kinetic_theory.hpp"
+
+namespace granjet::analysis {
 
 template <int D>
 GasObserver<D>::GasObserver(const Scene& scene, Simulator<D>& sim)
-    : start_(scene.gas.equilibration),
+    : kind_(scene.kind),
+      phi_(scene.gas.phi),
+      restitution_(scene.contact.restitution),
+      initial_temperature_(scene.gas.temperature),
+      half_step_(0.5 * scene.dt()),
+      start_(scene.gas.equilibration),
       interval_(scene.gas.sample_interval),
       next_(scene.gas.equilibration),
       grains_(static_cast<double>(sim.particles().size())) {
   observe(sim);
+}
+
+template <int D>
+double GasObserver<D>::next_time(const Simulator<D>& sim) const {
+  return std::max(next_, sim.time() + half_step_);
 }
 
 template <int D>
@@ -39,6 +52,26 @@ void GasObserver<D>::observe(Simulator<D>& sim) {
 }
 
 template <int D>
+void GasObserver<D>::summarize(Simulator<D>& sim, nlohmann::json& summary) {
+  if (samples_ <= 1) return;
+  summary["measured"] = {{"temperature", temperature()}};
+  if (kind_ == SceneKind::kGas) {
+    summary["measured"]["compressibility"] = compressibility();
+    summary["theory"] = {
+        {"compressibility", D == 3 ? kinetic::carnahan_starling(phi_) : kinetic::henderson(phi_)}};
+    return;
+  }
+  // Backend-neutral: -d ln T/dt at gas.temperature (the soft backend counts contacts, not
+  // collisions).
+  summary["measured"]["cooling_rate"] = cooling_rate(initial_temperature_);
+  if (sim.stats().collisions > 0) {
+    summary["measured"]["cooling_per_collision"] = cooling_per_collision();
+    summary["theory"] = {
+        {"cooling_per_collision", kinetic::cooling_per_collision(restitution_, D)}};
+  }
+}
+
+template <int D>
 double GasObserver<D>::temperature() const {
   return samples_ > 0 ? sum_t_ / samples_ : std::numeric_limits<double>::quiet_NaN();
 }
@@ -62,4 +95,4 @@ double GasObserver<D>::cooling_rate(double initial_temperature) const {
 template class GasObserver<2>;
 template class GasObserver<3>;
 
-}  // namespace granjet
+}  // namespace granjet::analysis

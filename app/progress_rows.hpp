@@ -1,0 +1,53 @@
+// The progress rows of a run (progress_table.hpp), one every run.progress_interval, and the
+// run's wall clock over all its invocations (a resumed run goes on from its checkpoint's).
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+
+#include "analysis/run_observer.hpp"
+#include "app/progress_table.hpp"
+#include "core/scene.hpp"
+
+namespace granjet {
+
+template <int D>
+class ProgressRows final : public analysis::RunObserver<D> {
+ public:
+  ProgressRows(std::ostream& out, const Scene& scene, bool event_driven)
+      : table_(out, scene.run.t_end, /*quiet=*/false, event_driven),
+        interval_(scene.run.progress_interval),
+        half_step_(0.5 * scene.dt()),
+        next_progress_(interval_) {}
+
+  void header() { table_.header(); }
+  // Of every invocation of the run so far.
+  double wall_seconds() const { return earlier_seconds_ + table_.elapsed_seconds(); }
+
+  double next_time(const Simulator<D>&) const override { return next_progress_; }
+  void observe(Simulator<D>& sim) override {
+    const double t = sim.time();
+    if (t < next_progress_ - half_step_) return;
+    table_.row(t, static_cast<std::int64_t>(sim.particles().size()), sim.stats(), sim.energy());
+    while (next_progress_ <= t + half_step_) next_progress_ += interval_;
+  }
+  std::string state_group() const override { return "run"; }
+  void save_state(StateWriter& out) override {
+    out("next_progress", next_progress_);
+    out("wall_seconds", wall_seconds());
+  }
+  void restore_state(StateReader& in) override {
+    in("next_progress", next_progress_);
+    in("wall_seconds", earlier_seconds_);
+  }
+
+ private:
+  ProgressTable table_;
+  double interval_;
+  double half_step_;
+  double next_progress_;
+  double earlier_seconds_ = 0.0;  // of the invocations before this one
+};
+
+}  // namespace granjet
