@@ -3,11 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
+#include <span>
 #include <string>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
@@ -15,16 +14,8 @@
 namespace granjet::dem {
 namespace {
 
-int thread_index() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
-
 // A grain against the immovable plate moves with its own mass, a pair with half of it: twice
-// the pair's springs and dashpots give the same e and t_c [3.4]-[3.5] (equal masses m = 1).
+// the pair's springs and dashpots give the same e and t_c, [3.4] and [3.5] (equal masses m = 1).
 ContactCoefficients against_plate(ContactCoefficients c) {
   c.kn *= 2.0;
   c.eta_n *= 2.0;
@@ -33,15 +24,7 @@ ContactCoefficients against_plate(ContactCoefficients c) {
   return c;
 }
 
-// The larger of the two, where a NaN wins and stays (so a blow-up is not lost in a maximum).
-double sticky_max(double largest, double value) {
-  return value > largest || std::isnan(value) ? value : largest;
-}
-
 }  // namespace
-
-#include "soft_dem/plate_contact.inl"
-#include "soft_dem/force_pass.inl"
 
 template <int D, bool kFriction, bool kMono, class Space>
 DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
@@ -53,10 +36,10 @@ DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Parti
       dt_(scene.dt()),
       overlap_limit_(scene.run.max_overlap),
       tethered_(scene.has_wall() && scene.wall.kind == WallKind::kTethered),
-      plate_law_{against_plate(law_.c), scene.dt()},
-      threads_(scene.run.threads) {
-  if (has_plate(scene)) plate_.emplace(scene.wall.diameter);
-  if (kFriction && plate_) plate_shear_.assign(p_.size(), Vec<D>::Zero());
+      threads_(scene.run.threads),
+      pass_(scene.run.threads, scene.run.max_overlap) {
+  if (has_plate(scene))
+    plate_.emplace(scene.wall.diameter, Law{against_plate(law_.c), scene.dt()}, p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
   // beyond that.
   if (tethered_)
@@ -126,7 +109,7 @@ void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
 }
 
 // One step from t to t + dt. Adams-Bashforth-2 needs no force after the position update, so
-// the force pass integrates each grain as its last phase (see force_pass.inl); velocity Verlet
+// the force pass integrates each grain as its last phase (see force_pass.hpp); velocity Verlet
 // needs the forces at t + dt before its corrector, so it takes a predictor pass first.
 // The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
 // dt times the largest speed of each step, a bound on every displacement that costs no extra
@@ -135,20 +118,21 @@ template <int D, bool kFriction, bool kMono, class Space>
 void DemSimulator<D, kFriction, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    const Ab2Step ab2 = ab2_step();
+    const Ab2Step<D, kFriction> ab2 = ab2_step();
     add_travel(force_pass([&](std::size_t i, bool forced) {
       return forced ? ab2.advance(i) : ab2.coast(i);
     }));
     first_step_ = false;
     ++step_;
   } else {
+    const VerletStep<D, kFriction> predictor = verlet_step();
     const auto n = static_cast<std::int64_t>(p_.size());
     std::vector<double> thread_speed2(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
       double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
 #pragma omp for schedule(static) nowait
-      for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predict_verlet(i));
+      for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predictor.predict(i));
       thread_speed2[thread_index()] = speed2;
     }
     double speed2 = 0.0;
@@ -156,8 +140,9 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
     ++step_;
     add_travel(speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
+    const VerletStep<D, kFriction> corrector = verlet_step();
     force_pass([&](std::size_t i, bool forced) {
-      if (forced) correct_verlet(i);  // else F(t) = F(t + dt) = 0: nothing to correct
+      if (forced) corrector.correct(i);  // else F(t) = F(t + dt) = 0: nothing to correct
       return 0.0;
     });
   }
@@ -172,11 +157,9 @@ void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2)
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
-// Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
-// x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
-// F(t-dt) = F(t) [spec §3].
+// Adams-Bashforth-2, with F(t - dt) = F(t) on the first step [spec §3].
 template <int D, bool kFriction, bool kMono, class Space>
-auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step {
+auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step<D, kFriction> {
   return {p_.position().data(),
           p_.velocity().data(),
           p_.spin().data(),
@@ -192,49 +175,57 @@ auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step {
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::Ab2Step::advance(std::size_t i) const {
-  const Vec<D> v_new = v[i] + (half_dt * inv_m[i]) * (3.0 * f[i] - f_before[i]);
-  x[i] += half_dt * (v[i] + v_new);
-  // The step moved grain i by dt |v + v_new|/2 <= dt max(|v|, |v_new|).
-  const double speed2 = std::max(v[i].squaredNorm(), v_new.squaredNorm());
-  v[i] = v_new;
-  f_next[i].setZero();  // the swap after the pass makes f F(t-dt) and this the next F
-  if constexpr (kFriction) {
-    w[i] += (half_dt * inv_inertia[i]) * (3.0 * t[i] - t_before[i]);
-    t_next[i] = Dim<D>::zero_spin();
+auto DemSimulator<D, kFriction, kMono, Space>::verlet_step() -> VerletStep<D, kFriction> {
+  return {p_.position().data(), p_.velocity().data(),     p_.spin().data(),
+          force_.data(),        force_prev_.data(),       torque_.data(),
+          torque_prev_.data(),  p_.inverse_mass().data(), inv_inertia_.data(),
+          dt_};
+}
+
+// The whole pass (the phases of force_pass.hpp): the tethers, the pairs, the plate, then each
+// grain's update. force_ and torque_ must be zero on entry.
+template <int D, bool kFriction, bool kMono, class Space>
+template <class AfterRow>
+[[gnu::flatten]]  // inline the contact law and the grain update into their loops
+double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row) {
+  if (tethered_)
+    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+  for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
+  pass_.find_contacts(p_, pairs_, pair_row_, space_);
+  const std::size_t first_blown = pass_.evaluate_contacts(
+      law_, p_, pairs_, pair_row_, space_, {force_.data(), torque_.data(), forced_.data()});
+  const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
+  stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
+
+  const auto n = static_cast<std::int64_t>(p_.size());
+  std::int64_t first_blown_on_plate = n;
+  if (plate_) {  // after the contacts: the same sum order for any thread count
+    using Touch = typename Plate<D, Law>::Touch;
+    const auto x = p_.position();
+    const auto v = p_.velocity();
+    const auto w = p_.spin();
+    const auto radius = p_.radius();
+    std::uint8_t* forced = forced_.data();
+#pragma omp parallel for num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Touch touch = plate_->add_force(i, x[i], radius_of(radius, i), v[i], w[i],
+                                            overlap_limit_, force_[i], torque_[i]);
+      if (touch != Touch::kApart) forced[i] |= 1;
+      if (touch == Touch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
+    }
   }
-  return speed2;
-}
-
-template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::Ab2Step::coast(std::size_t i) const {
-  x[i] += half_dt * (v[i] + v[i]);  // v_new = v: the same rounding as advance
-  return v[i].squaredNorm();
-}
-
-// Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
-// this predicted v(t+dt) rather than the half-step velocity, which would lag by dt/2 and bias
-// the restitution by O(dt) (LAMMPS's nve/sphere gives e = 0.7567 for 0.75 at dt = t_c/50).
-template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::predict_verlet(std::size_t i) {
-  Vec<D>& v = p_.velocity()[i];
-  const Vec<D> dv = (dt_ * p_.inverse_mass()[i]) * force_prev_[i];
-  p_.position()[i] += dt_ * (v + 0.5 * dv);
-  const double speed2 = std::max(v.squaredNorm(), (v + dv).squaredNorm());  // bounds the move
-  v += dv;
-  if constexpr (kFriction) p_.spin()[i] += (dt_ * inv_inertia_[i]) * torque_prev_[i];
-  return speed2;
-}
-
-// Velocity Verlet, corrector: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::correct_verlet(std::size_t i) {
-  p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
-  force_prev_[i].setZero();  // see Ab2Step::advance
-  if constexpr (kFriction) {
-    p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (torque_[i] - torque_prev_[i]);
-    torque_prev_[i] = Dim<D>::zero_spin();
+  const double largest = pass_.update_grains(forced_, p_.kind(), tethered_, after_row);
+  // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
+  // row i + 1); the state it integrated is lost anyway.
+  if (first_blown < contact_pair.size()) {
+    const std::uint32_t k = contact_pair[first_blown];
+    if (pair_row_[k] <= first_blown_on_plate) throw_overlap(pair_row_[k], pairs_.partner[k]);
   }
+  if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
+  // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
+  force_.swap(force_prev_);
+  if constexpr (kFriction) torque_.swap(torque_prev_);
+  return largest;
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -277,6 +268,21 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_c
         i, [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                const Vec<D>& v_rel) { on_contact(i, j, k, g, v_rel); },
         on_apart);
+}
+
+template <int D, bool kFriction, bool kMono, class Space>
+template <class OnContact>
+void DemSimulator<D, kFriction, kMono, Space>::for_each_plate_contact(
+    OnContact&& on_contact) const {
+  if (!plate_) return;
+  const auto x = p_.position();
+  const auto v = p_.velocity();
+  const auto w = p_.spin();
+  const auto radius = p_.radius();
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    plate_->contact(
+        x[i], radius_of(radius, i), v[i], w[i],
+        [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) { on_contact(i, g, v_rel); }, [] {});
 }
 
 // Grain i overlapping grain j, or the plate when j == i.
@@ -326,19 +332,12 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
   Particles<D>::gather_one(force_prev_, keep);
   Particles<D>::gather_one(torque_prev_, keep);
   Particles<D>::gather_one(inv_inertia_, keep);
-  if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, keep);
+  if (plate_) plate_->gather(keep);
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
 auto DemSimulator<D, kFriction, kMono, Space>::histories() const -> std::vector<History> {
-  std::vector<History> history;
-  if constexpr (kFriction)
-    for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
-      const std::uint32_t k = contact_pair_[c];
-      history.push_back({p_.id()[pair_row_[k]], p_.id()[pairs_.partner[k]],
-                         contact_shear_.template get<Vec<D>>(c)});
-    }
-  return history;
+  return pass_.history().by_ids(p_.id(), pair_row_, pairs_.partner);
 }
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
@@ -364,7 +363,7 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History
   forced_.assign(p_.size(), 3);  // unknown after the reordering: assume forces
   torque_.assign(p_.size(), Dim<D>::zero_spin());
   Particles<D>::gather_one(inv_inertia_, order);
-  if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, order);
+  if (plate_) plate_->gather(order);
   for (std::size_t i = 0; i < p_.size(); ++i)
     index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
 
@@ -377,27 +376,14 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History
   pair_row_.resize(pairs_.size());
   for (std::uint32_t i = 0; i < p_.size(); ++i)
     std::fill(pair_row_.begin() + pairs_.first[i], pair_row_.begin() + pairs_.first[i + 1], i);
-  // The contacts carried over, by their new list index.
-  std::vector<std::pair<std::uint32_t, Vec<D>>> carried;
-  for (const History& h : history) {
-    const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
-    if (a == kRemoved || b == kRemoved) continue;
-    const std::uint32_t i = std::min(a, b), j = std::max(a, b);
-    // Still touching, so still listed: find j in row i (a handful of partners).
-    for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
-      if (pairs_.partner[k] == j) {
-        carried.emplace_back(k, h.shear);
-        break;
-      }
-  }
-  std::sort(carried.begin(), carried.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
-  contact_pair_.resize(carried.size());
-  contact_shear_.resize(carried.size());
-  for (std::size_t c = 0; c < carried.size(); ++c) {
-    contact_pair_[c] = carried[c].first;
-    contact_shear_.set(c, carried[c].second);
-  }
+  pass_.history().restore(
+      history,
+      [this](GrainId id) -> std::optional<std::uint32_t> {
+        const std::uint32_t i = index_of_id_[id];
+        if (i == kRemoved) return std::nullopt;
+        return i;
+      },
+      pairs_);
   travel_ = 0.0;
   needs_rebuild_ = false;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
@@ -413,7 +399,8 @@ void DemSimulator<D, kFriction, kMono, Space>::checkpoint(StateArchive& a) {
   put_particles(a, "dem/grains", p_);
   a.put_rows<Vec<D>>("dem/force_prev", force_prev_);
   a.put_rows<Spin<D>>("dem/torque_prev", torque_prev_);
-  a.put_rows<Vec<D>>("dem/plate_shear", plate_shear_);
+  a.put_rows<Vec<D>>("dem/plate_shear",
+                     plate_ ? plate_->shear() : std::vector<Vec<D>>());
   std::vector<GrainId> pair;
   std::vector<Vec<D>> shear;
   for (const History& h : histories()) {
@@ -437,10 +424,11 @@ void DemSimulator<D, kFriction, kMono, Space>::restore(const StateArchive& a) {
   const std::size_t n = p_.size();
   force_prev_ = a.rows<Vec<D>>("dem/force_prev");
   torque_prev_ = a.rows<Spin<D>>("dem/torque_prev");
-  plate_shear_ = a.rows<Vec<D>>("dem/plate_shear");
-  if (force_prev_.size() != n || torque_prev_.size() != n ||
-      (!plate_shear_.empty() && plate_shear_.size() != n))
+  std::vector<Vec<D>> plate_shear = a.rows<Vec<D>>("dem/plate_shear");
+  const std::size_t plate_rows = plate_ && Law::kNeedsHistory ? n : 0;
+  if (force_prev_.size() != n || torque_prev_.size() != n || plate_shear.size() != plate_rows)
     throw std::runtime_error("checkpoint entries under dem/ differ in length");
+  if (plate_) plate_->shear() = std::move(plate_shear);
   inv_inertia_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double r = p_.radius()[i];
@@ -479,21 +467,15 @@ void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<Pai
   const auto id = p_.id();
   for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>& v_rel) {
-    Vec<D> shear = history(k);  // a copy: sampling must not advance the history
+    Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
     const Vec<D> f = law_.force(g, v_rel, shear);
     // The partner's nearest image: position_i - position_j is the contact's separation.
     out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
   }, [](std::uint32_t) {});
-  if (!plate_) return;
-  for (std::size_t i = 0; i < p_.size(); ++i)
-    plate_contact_of(
-        i,
-        [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-          Vec<D> shear = plate_history(i);  // a copy, as above
-          const Vec<D> f = plate_law_.force(g, v_rel, shear);
-          out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
-        },
-        [] {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+    const Vec<D> f = plate_->force(i, g, v_rel);
+    out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
+  });
 }
 
 template <int D, bool kFriction, bool kMono, class Space>
@@ -509,20 +491,14 @@ void DemSimulator<D, kFriction, kMono, Space>::sample_forces(ForceSample<D>& out
   };
   for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>& v_rel) {
-    Vec<D> shear = history(k);  // a copy: sampling must not advance the history
+    Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
     const Vec<D> f = law_.force(g, v_rel, shear);
     add(i, id[j], g, f);
     out.total[j] -= f;
   }, [](std::uint32_t) {});
-  if (plate_)
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      plate_contact_of(
-          i,
-          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-            Vec<D> shear = plate_history(i);  // a copy, as above
-            add(i, kPlateId, g, plate_law_.force(g, v_rel, shear));
-          },
-          [] {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+    add(i, kPlateId, g, plate_->force(i, g, v_rel));
+  });
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
 }
@@ -538,16 +514,11 @@ EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
   }
   for_each_contact([&](std::size_t, std::size_t, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>&) {
-    e.elastic += law_.elastic_energy(g, history(k));
+    e.elastic += law_.elastic_energy(g, pass_.history().of(k));
   }, [](std::uint32_t) {});
-  if (plate_)
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      plate_contact_of(
-          i,
-          [&](const ContactGeometry<D>& g, const Vec<D>&) {
-            e.elastic += plate_law_.elastic_energy(g, plate_history(i));
-          },
-          [] {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>&) {
+    e.elastic += plate_->elastic_energy(i, g);
+  });
   if (tethered_) e.elastic += wall_.elastic_energy(p_, [this](GrainId id) { return index_of(id); });
   e.removed = removed_energy_;
   e.dissipated = initial_energy_ - e.total() - e.removed;
