@@ -12,10 +12,14 @@ namespace granjet {
 
 std::vector<std::string> backend_names() { return {"soft_dem", "event_driven"}; }
 
-void check_backend(const std::string& backend, const Scene& /*scene*/) {
-  // Both run every scene (event_driven/scene_support.hpp says what the hard-core version
-  // changes).
-  if (backend == "soft_dem" || backend == "event_driven") return;
+void check_backend(const std::string& backend, const Scene& scene) {
+  // The event-driven backend runs every scene (event_driven/scene_support.hpp says what the
+  // hard-core version changes); the soft one, every scene its contact law supports.
+  if (backend == "soft_dem") {
+    dem::check_scene(scene);
+    return;
+  }
+  if (backend == "event_driven") return;
   std::string allowed;
   for (const std::string& name : backend_names()) allowed += (allowed.empty() ? "" : ", ") + name;
   throw InputError("--backend", "'" + backend + "' is not available; allowed: " + allowed);

@@ -12,8 +12,8 @@ namespace granjet {
 
 std::vector<std::string> backend_names();
 
-// Throws InputError naming --backend when the name is unknown or the backend cannot run the
-// scene.
+// Throws InputError naming --backend when the name is unknown, or naming the scene key the
+// backend cannot run (the soft DEM: a contact.model in a dimension it does not support).
 void check_backend(const std::string& backend, const Scene& scene);
 
 // What the backend ignores or replaces in the scene, as lines for the user (may be empty).

@@ -2,48 +2,38 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "soft_dem/contact_coefficients.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet::dem {
-namespace {
 
-// A grain against the immovable plate moves with its own mass, a pair with half of it: twice
-// the pair's springs and dashpots give the same e and t_c, [3.4] and [3.5] (equal masses m = 1).
-ContactCoefficients against_plate(ContactCoefficients c) {
-  c.kn *= 2.0;
-  c.eta_n *= 2.0;
-  c.kt *= 2.0;
-  c.eta_t *= 2.0;
-  return c;
-}
-
-}  // namespace
-
-template <int D, bool kFriction, bool kMono, class Space>
-DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
+template <int D, class Law, bool kMono, class Space>
+DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
                                                         Space space)
     : scene_(scene),
       space_(std::move(space)),
       p_(std::move(initial)),
-      law_{contact_coefficients(scene.contact), scene.dt()},
+      law_(scene.contact, scene.dt()),
       dt_(scene.dt()),
       overlap_limit_(scene.run.max_overlap),
       tethered_(scene.has_wall() && scene.wall.kind == WallKind::kTethered),
       threads_(scene.run.threads),
       pass_(scene.run.threads, scene.run.max_overlap) {
-  if (has_plate(scene))
-    plate_.emplace(scene.wall.diameter, Law{against_plate(law_.c), scene.dt()}, p_.size());
+  if (has_plate(scene)) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
-  // beyond that.
+  // beyond that. The tethers' dashpots are wall.damping_ratio times the eta_n of [3.5] whatever
+  // the contact law (spec §4 gives them in the linear law's terms).
   if (tethered_)
-    wall_ = TetheredWall<D>(p_, scene.wall.spring, scene.wall.damping_ratio * law_.c.eta_n,
+    wall_ = TetheredWall<D>(p_, scene.wall.spring,
+                            scene.wall.damping_ratio * contact_coefficients(scene.contact).eta_n,
                             (scene.wall.spacing + 2.0 * scene.wall.jitter) * (1.0 + 1e-6));
   const std::size_t n = p_.size();
   force_.assign(n, Vec<D>::Zero());
@@ -65,8 +55,8 @@ DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Parti
   initial_energy_ = energy().total() + removed_energy_;
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::advance_to(double t) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
   // The first step at or after t (a relative 1e-9 absorbs round-off in t / dt).
   const auto target = static_cast<std::int64_t>(std::ceil(t / dt_ - 1e-9));
   if (step_ >= target) return;
@@ -83,14 +73,14 @@ void DemSimulator<D, kFriction, kMono, Space>::advance_to(double t) {
 // step already stores 2% of E_0 at dt = 0.1 t_c, though the collision ends with e = 0.736);
 // the kinetic bound holds at every instant, so how often the caller looks does not matter.
 // 1% of E_0 leaves room for the integration error.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   if (scene_.contact.restitution >= 1.0) return;
   double kinetic = removed_energy_;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;
     kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kFriction)
+    if constexpr (kRotation)
       kinetic += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
   const double rise = kinetic - initial_energy_;
@@ -114,18 +104,18 @@ void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
 // The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
 // dt times the largest speed of each step, a bound on every displacement that costs no extra
 // pass over stored positions.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::step() {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    const Ab2Step<D, kFriction> ab2 = ab2_step();
+    const Ab2Step<D, kRotation> ab2 = ab2_step();
     add_travel(force_pass([&](std::size_t i, bool forced) {
       return forced ? ab2.advance(i) : ab2.coast(i);
     }));
     first_step_ = false;
     ++step_;
   } else {
-    const VerletStep<D, kFriction> predictor = verlet_step();
+    const VerletStep<D, kRotation> predictor = verlet_step();
     const auto n = static_cast<std::int64_t>(p_.size());
     std::vector<double> thread_speed2(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
@@ -140,7 +130,7 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
     ++step_;
     add_travel(speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
-    const VerletStep<D, kFriction> corrector = verlet_step();
+    const VerletStep<D, kRotation> corrector = verlet_step();
     force_pass([&](std::size_t i, bool forced) {
       if (forced) corrector.correct(i);  // else F(t) = F(t + dt) = 0: nothing to correct
       return 0.0;
@@ -150,16 +140,16 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
   stats_.particle_steps += free_grains_;
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::add_travel(double largest_speed2) {
   travel_ += dt_ * std::sqrt(largest_speed2);
   // Written so that a NaN speed also triggers the rebuild, which reports it.
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
 // Adams-Bashforth-2, with F(t - dt) = F(t) on the first step [spec §3].
-template <int D, bool kFriction, bool kMono, class Space>
-auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step<D, kFriction> {
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::ab2_step() -> Ab2Step<D, kRotation> {
   return {p_.position().data(),
           p_.velocity().data(),
           p_.spin().data(),
@@ -174,8 +164,8 @@ auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step<D, kFrictio
           0.5 * dt_};
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-auto DemSimulator<D, kFriction, kMono, Space>::verlet_step() -> VerletStep<D, kFriction> {
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotation> {
   return {p_.position().data(), p_.velocity().data(),     p_.spin().data(),
           force_.data(),        force_prev_.data(),       torque_.data(),
           torque_prev_.data(),  p_.inverse_mass().data(), inv_inertia_.data(),
@@ -184,10 +174,10 @@ auto DemSimulator<D, kFriction, kMono, Space>::verlet_step() -> VerletStep<D, kF
 
 // The whole pass (the phases of force_pass.hpp): the tethers, the pairs, the plate, then each
 // grain's update. force_ and torque_ must be zero on entry.
-template <int D, bool kFriction, bool kMono, class Space>
+template <int D, class Law, bool kMono, class Space>
 template <class AfterRow>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
-double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row) {
+double DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
@@ -200,7 +190,7 @@ double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row
   const auto n = static_cast<std::int64_t>(p_.size());
   std::int64_t first_blown_on_plate = n;
   if (plate_) {  // after the contacts: the same sum order for any thread count
-    using Touch = typename Plate<D, Law>::Touch;
+    using Touch = typename Plate<D, WallLaw>::Touch;
     const auto x = p_.position();
     const auto v = p_.velocity();
     const auto w = p_.spin();
@@ -224,13 +214,13 @@ double DemSimulator<D, kFriction, kMono, Space>::force_pass(AfterRow&& after_row
   if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
   // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
-  if constexpr (kFriction) torque_.swap(torque_prev_);
+  if constexpr (kRotation) torque_.swap(torque_prev_);
   return largest;
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
+template <int D, class Law, bool kMono, class Space>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
+void DemSimulator<D, Law, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
                                                      OnApart&& on_apart) const {
   const auto x = p_.position();
   const auto radius = p_.radius();
@@ -251,17 +241,17 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i
   }
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-Vec<D> DemSimulator<D, kFriction, kMono, Space>::relative_velocity(
+template <int D, class Law, bool kMono, class Space>
+Vec<D> DemSimulator<D, Law, kMono, Space>::relative_velocity(
     std::size_t i, std::size_t j, const ContactGeometry<D>& g) const {
   const auto v = p_.velocity();
   const auto w = p_.spin();
-  return dem::relative_velocity<kFriction>(v[i], v[j], w[i], w[j], g);
+  return dem::relative_velocity<kRotation>(v[i], v[j], w[i], w[j], g);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
+template <int D, class Law, bool kMono, class Space>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_contact,
+void DemSimulator<D, Law, kMono, Space>::for_each_contact(OnContact&& on_contact,
                                                   OnApart&& on_apart) const {
   for (std::size_t i = 0; i < p_.size(); ++i)
     for_each_contact_of(
@@ -270,9 +260,9 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_c
         on_apart);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
+template <int D, class Law, bool kMono, class Space>
 template <class OnContact>
-void DemSimulator<D, kFriction, kMono, Space>::for_each_plate_contact(
+void DemSimulator<D, Law, kMono, Space>::for_each_plate_contact(
     OnContact&& on_contact) const {
   if (!plate_) return;
   const auto x = p_.position();
@@ -286,8 +276,8 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_plate_contact(
 }
 
 // Grain i overlapping grain j, or the plate when j == i.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::throw_overlap(std::size_t i, std::size_t j) const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::throw_overlap(std::size_t i, std::size_t j) const {
   std::vector<GrainId> ids{p_.id()[i]};
   if (j != i) ids.push_back(p_.id()[j]);
   throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
@@ -295,8 +285,8 @@ void DemSimulator<D, kFriction, kMono, Space>::throw_overlap(std::size_t i, std:
                     step_, time(), ids);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::check_finite() const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::check_finite() const {
   std::vector<GrainId> bad;
   for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
     if (!p_.position()[i].allFinite() || !p_.velocity()[i].allFinite()) bad.push_back(p_.id()[i]);
@@ -305,8 +295,8 @@ void DemSimulator<D, kFriction, kMono, Space>::check_finite() const {
 
 // Jet grains farther than region.radius from the axis or region.below behind the target plane
 // are removed; their energy is booked so the balance still closes.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
   if (!scene_.has_wall()) return;
   constexpr int kAxis = Dim<D>::kJetAxis;
   const double r2_max = scene_.region.radius * scene_.region.radius;
@@ -324,7 +314,7 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
     ++stats_.removed;
     index_of_id_[p_.id()[i]] = kRemoved;
     removed_energy_ += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kFriction)
+    if constexpr (kRotation)
       removed_energy_ += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
   if (keep.size() == p_.size()) return;
@@ -335,15 +325,15 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
   if (plate_) plate_->gather(keep);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-auto DemSimulator<D, kFriction, kMono, Space>::histories() const -> std::vector<History> {
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::histories() const -> std::vector<History> {
   return pass_.history().by_ids(p_.id(), pair_row_, pairs_.partner);
 }
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History>& history) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& history) {
   check_finite();
   remove_escaped();
   double max_radius = 0.0;
@@ -393,8 +383,8 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History
 // A rebuild first: it re-sorts the grains by cell and lists the pairs anew from positions
 // alone, so a simulator that takes the stored grains (already in that order) and rebuilds gets
 // the same order, list and carried histories, and every later sum runs in the same order.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::checkpoint(StateArchive& a) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::checkpoint(StateArchive& a) {
   rebuild();
   put_particles(a, "dem/grains", p_);
   a.put_rows<Vec<D>>("dem/force_prev", force_prev_);
@@ -418,8 +408,8 @@ void DemSimulator<D, kFriction, kMono, Space>::checkpoint(StateArchive& a) {
   put_stats(a, "dem/stats", stats_);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::restore(const StateArchive& a) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   p_ = get_particles<D>(a, "dem/grains");
   const std::size_t n = p_.size();
   force_prev_ = a.rows<Vec<D>>("dem/force_prev");
@@ -459,8 +449,8 @@ void DemSimulator<D, kFriction, kMono, Space>::restore(const StateArchive& a) {
   stats_ = get_stats(a, "dem/stats");
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
   const double elapsed = time() - last_collect_time_;
   last_collect_time_ = time();
   const auto x = p_.position();
@@ -478,14 +468,14 @@ void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<Pai
   });
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::sample_forces(ForceSample<D>& out) const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) const {
   const auto id = p_.id();
   out.contacts.clear();
   out.total.assign(p_.size(), Vec<D>::Zero());
   const auto add = [&](std::size_t i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
-    // Without friction the law's force lies along n: projecting would only add rounding.
-    const Vec<D> normal = kFriction ? Vec<D>(f.dot(g.n) * g.n) : f;
+    // A law that turns no grain has no tangential force: projecting would only add rounding.
+    const Vec<D> normal = kRotation ? Vec<D>(f.dot(g.n) * g.n) : f;
     out.contacts.push_back({id[i], j, normal, f - normal, g.overlap});
     out.total[i] += f;
   };
@@ -503,13 +493,13 @@ void DemSimulator<D, kFriction, kMono, Space>::sample_forces(ForceSample<D>& out
     wall_.add_forces(p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
+template <int D, class Law, bool kMono, class Space>
+EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;  // immovable wall grains carry no energy
     e.kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kFriction)
+    if constexpr (kRotation)
       e.rotational += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
   for_each_contact([&](std::size_t, std::size_t, std::uint32_t k, const ContactGeometry<D>& g,
@@ -525,9 +515,21 @@ EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
   return e;
 }
 
-// The periodic gas scenes: unit grains (so monodisperse) in the box of gas_lattice.
+namespace {
+
+// A contact law, as the template the factory instantiates.
+template <template <int, bool> class LawOf>
+struct ContactLaw {};
+
+// Calls choose(ContactLaw<...>{}) with the scene's contact law: where laws are registered.
+template <class Choose>
+decltype(auto) with_contact_law(const ContactSpec&, Choose&& choose) {
+  return choose(ContactLaw<LinearSpringDashpot>{});
+}
+
+// The periodic gas scenes' box (gas_lattice's), which must hold three neighbour cells across.
 template <int D>
-std::unique_ptr<Simulator<D>> make_periodic_dem_simulator(const Scene& scene) {
+PeriodicBox<D> periodic_box(const Scene& scene) {
   const PeriodicBox<D> box(gas_lattice<D>(scene.gas).box);
   const double cut = 1.0 + scene.run.skin;
   if (box.box.minCoeff() < 3.0 * cut)
@@ -535,41 +537,60 @@ std::unique_ptr<Simulator<D>> make_periodic_dem_simulator(const Scene& scene) {
                                        " d across) must be at least three neighbour cells of "
                                        "1 + run.skin = " + std::to_string(cut) +
                                        " d wide; use more grains or a lower gas.phi");
+  return box;
+}
+
+template <int D, class Law>
+std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
+  // The gases' grains are unit grains (Scene::monodisperse), so they need no other instance.
+  if (scene.periodic()) {
+    const PeriodicBox<D> box = periodic_box<D>(scene);
+    return std::make_unique<DemSimulator<D, Law, true, PeriodicBox<D>>>(
+        scene, build_initial_state<D>(scene), box);
+  }
   Particles<D> initial = build_initial_state<D>(scene);
-  if (scene.frictional())
-    return std::make_unique<DemSimulator<D, true, true, PeriodicBox<D>>>(scene, std::move(initial),
-                                                                         box);
-  return std::make_unique<DemSimulator<D, false, true, PeriodicBox<D>>>(scene, std::move(initial),
-                                                                        box);
+  if (scene.monodisperse())
+    return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial));
+  return std::make_unique<DemSimulator<D, Law, false>>(scene, std::move(initial));
+}
+
+}  // namespace
+
+void check_scene(const Scene& scene) {
+  with_contact_law(scene.contact, [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
+    const std::string_view why = scene.dimension == 2 ? LawOf<2, false>::kUnsupported
+                                                      : LawOf<3, false>::kUnsupported;
+    if (!why.empty()) throw InputError("contact.model", std::string(why));
+  });
 }
 
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
-  if (scene.periodic()) return make_periodic_dem_simulator<D>(scene);
-  Particles<D> initial = build_initial_state<D>(scene);
-  const auto radii = initial.radius();
-  const bool mono = std::adjacent_find(radii.begin(), radii.end(), std::not_equal_to<>()) ==
-                    radii.end();
-  if (scene.frictional()) {
-    if (mono) return std::make_unique<DemSimulator<D, true, true>>(scene, std::move(initial));
-    return std::make_unique<DemSimulator<D, true, false>>(scene, std::move(initial));
-  }
-  if (mono) return std::make_unique<DemSimulator<D, false, true>>(scene, std::move(initial));
-  return std::make_unique<DemSimulator<D, false, false>>(scene, std::move(initial));
+  return with_contact_law(
+      scene.contact,
+      [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) -> std::unique_ptr<Simulator<D>> {
+        if constexpr (!LawOf<D, false>::kUnsupported.empty()) {
+          throw InputError("contact.model", std::string(LawOf<D, false>::kUnsupported));
+        } else {
+          // The law with its tangential part when the scene needs one: its traits then say
+          // what is stored and integrated.
+          if (scene.needs_history() || scene.needs_rotation())
+            return make_with_law<D, LawOf<D, true>>(scene);
+          return make_with_law<D, LawOf<D, false>>(scene);
+        }
+      });
 }
 
-template class DemSimulator<2, false, false>;
-template class DemSimulator<2, false, true>;
-template class DemSimulator<2, true, false>;
-template class DemSimulator<2, true, true>;
-template class DemSimulator<3, false, false>;
-template class DemSimulator<3, false, true>;
-template class DemSimulator<3, true, false>;
-template class DemSimulator<3, true, true>;
-template class DemSimulator<2, false, true, PeriodicBox<2>>;
-template class DemSimulator<2, true, true, PeriodicBox<2>>;
-template class DemSimulator<3, false, true, PeriodicBox<3>>;
-template class DemSimulator<3, true, true, PeriodicBox<3>>;
+// The linear law's instances, for tests and benchmarks that build a simulator directly; other
+// laws are instantiated by the factory above.
+template class DemSimulator<2, LinearSpringDashpot<2, false>, false>;
+template class DemSimulator<2, LinearSpringDashpot<2, false>, true>;
+template class DemSimulator<2, LinearSpringDashpot<2, true>, false>;
+template class DemSimulator<2, LinearSpringDashpot<2, true>, true>;
+template class DemSimulator<3, LinearSpringDashpot<3, false>, false>;
+template class DemSimulator<3, LinearSpringDashpot<3, false>, true>;
+template class DemSimulator<3, LinearSpringDashpot<3, true>, false>;
+template class DemSimulator<3, LinearSpringDashpot<3, true>, true>;
 template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
 

@@ -2,9 +2,10 @@
 // (soft_dem/force_pass.hpp), Adams-Bashforth-2 or velocity Verlet (soft_dem/integrators.hpp),
 // the tethered or fixed target grains or the flat plate (soft_dem/plate.hpp), and removal of
 // grains that leave the region; run.threads shares the pass out with bit-identical results.
-// Frictionless scenes compile without contact history and rotation (kFriction = false); grains
-// all of one size without radius lookups (kMono); the periodic gas scenes use minimum-image
-// separations (Space = PeriodicBox), all others none.
+// Law is the contact law (soft_dem/linear_spring_dashpot.hpp says what a law provides): its
+// traits decide whether contact history is kept and whether grains turn, so a frictionless
+// scene compiles without both. Grains all of one size go without radius lookups (kMono); the
+// periodic gas scenes use minimum-image separations (Space = PeriodicBox), all others none.
 #pragma once
 
 #include <cstddef>
@@ -19,7 +20,7 @@
 #include "core/scene.hpp"
 #include "core/simulator.hpp"
 #include "core/space.hpp"
-#include "soft_dem/contact_law.hpp"
+#include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/force_pass.hpp"
 #include "soft_dem/integrators.hpp"
 #include "soft_dem/plate.hpp"
@@ -27,11 +28,9 @@
 
 namespace granjet::dem {
 
-template <int D, bool kFriction, bool kMono = false, class Space = OpenSpace<D>>
+template <int D, class Law, bool kMono = false, class Space = OpenSpace<D>>
 class DemSimulator final : public Simulator<D> {
  public:
-  using Law = LinearSpringDashpot<D, kFriction>;
-
   DemSimulator(const Scene& scene, Particles<D> initial, Space space = {});
 
   std::string_view backend() const override { return "soft_dem"; }
@@ -48,17 +47,18 @@ class DemSimulator final : public Simulator<D> {
   void restore(const StateArchive& in) override;
 
   double dt() const { return dt_; }
-  const ContactCoefficients& coefficients() const { return law_.c; }
 
  private:
+  static constexpr bool kRotation = Law::kNeedsRotation;
   using Pass = ForcePass<D, Law, kMono, Space>;
   using History = typename Pass::History::ByIds;
+  using WallLaw = typename Law::Wall;
 
   void step();
   void add_travel(double largest_speed2);
   // The integrators over the current arrays (rebuilds reorder them: take these after one).
-  Ab2Step<D, kFriction> ab2_step();
-  VerletStep<D, kFriction> verlet_step();
+  Ab2Step<D, kRotation> ab2_step();
+  VerletStep<D, kRotation> verlet_step();
   // Evaluates all forces at the current state, then calls after_row(i, forced) for every grain
   // with its total force (see force_pass.hpp); returns the largest value after_row returned.
   template <class AfterRow>
@@ -113,10 +113,7 @@ class DemSimulator final : public Simulator<D> {
   PairList pairs_;
   std::vector<std::uint32_t> pair_row_;  // the row i of each listed pair
   Pass pass_;
-  // The plate (wall.kind = plate), with its contact law: a grain against an immovable face;
-  // twice the pair's stiffness and damping give the pair's e and t_c for the study's equal
-  // masses.
-  std::optional<Plate<D, Law>> plate_;
+  std::optional<Plate<D, WallLaw>> plate_;  // wall.kind = plate
 
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;
@@ -129,9 +126,14 @@ class DemSimulator final : public Simulator<D> {
   SimStats stats_;
 };
 
-// The factory's single point where run-time scene choices become template instantiations.
+// The factory's single point where run-time scene choices (dimension, contact.model, friction,
+// monodisperse grains, periodic space) become template instantiations.
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene);
+
+// Refuses, before anything is built, a scene the soft DEM cannot run (a contact law in a
+// dimension it does not support): InputError naming the key.
+void check_scene(const Scene& scene);
 
 extern template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 extern template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);

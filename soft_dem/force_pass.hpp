@@ -32,7 +32,7 @@
 #include "core/neighbour_list.hpp"
 #include "core/particles.hpp"
 #include "soft_dem/contact_history.hpp"
-#include "soft_dem/contact_law.hpp"
+#include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/contact_table.hpp"
 #include "soft_dem/integrators.hpp"
 #include "soft_dem/lane_vec.hpp"

@@ -23,10 +23,10 @@ inline double sticky_max(double largest, double value) {
 //   [B.21] v(t+dt) = v(t) + dt/(2m) (3 F(t) - F(t-dt))
 //   [B.22] w(t+dt) = w(t) + dt/(2I) (3 M(t) - M(t-dt))
 //   [B.23] x(t+dt) = x(t) + dt/2 (v(t+dt) + v(t))
-// (spec §3 heads the three updates [B.21]-[B.24] without numbering them one by one: the labels
-// here follow its order, and [B.24] is matched to none). Raw pointers, taken once per pass: Eigen stores
-// through may-alias vector types, after which a pointer read from a member would have to be
-// read again.
+// (spec §3 heads these three updates with four labels and does not number them one by one:
+// the labels here follow its order, and [B.24] is matched to none). Raw pointers, taken once
+// per pass: Eigen stores through may-alias vector types, after which a pointer read from a
+// member would have to be read again.
 template <int D, bool kRotation>
 struct Ab2Step {
   Vec<D>* x;

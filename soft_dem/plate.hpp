@@ -17,11 +17,12 @@
 #include "core/dim.hpp"
 #include "core/particles.hpp"
 #include "core/plate_face.hpp"
-#include "soft_dem/contact_law.hpp"
+#include "soft_dem/contact_geometry.hpp"
 
 namespace granjet::dem {
 
-// Law: the contact law of a grain against the immovable face (see the constructor's caller).
+// Law: the contact law of a grain against the immovable face (a law's Wall variant, whose
+// geometry has lever_j = 0).
 template <int D, class Law>
 class Plate : public PlateFace<D> {
  public:

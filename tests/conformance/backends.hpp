@@ -10,6 +10,7 @@
 
 #include "event_driven/ed_simulator.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet::testing {
 
@@ -18,7 +19,8 @@ struct SoftDemBackend {
   static constexpr double kRestitutionTolerance = 0.005;  // relative
   template <int D>
   static std::unique_ptr<Simulator<D>> make(const Scene& scene, Particles<D> grains) {
-    return std::make_unique<dem::DemSimulator<D, false>>(scene, std::move(grains));
+    return std::make_unique<dem::DemSimulator<D, dem::LinearSpringDashpot<D, false>>>(
+        scene, std::move(grains));
   }
 };
 
