@@ -31,8 +31,8 @@
 #include "core/dim.hpp"
 #include "core/neighbour_list.hpp"
 #include "core/particles.hpp"
-#include "soft_dem/contact_history.hpp"
 #include "soft_dem/contact_geometry.hpp"
+#include "soft_dem/contact_history.hpp"
 #include "soft_dem/contact_table.hpp"
 #include "soft_dem/integrators.hpp"
 #include "soft_dem/lane_vec.hpp"
@@ -63,8 +63,7 @@ class ForcePass {
     std::uint8_t* forced;
   };
 
-  ForcePass(int threads, double overlap_limit)
-      : threads_(threads), overlap_limit_(overlap_limit) {}
+  ForcePass(int threads, double overlap_limit) : threads_(threads), overlap_limit_(overlap_limit) {}
 
   // The listed pairs in contact at the last evaluation and their history.
   History& history() { return history_; }
@@ -108,9 +107,10 @@ class ForcePass {
   // the first contact (in list order) whose overlap is beyond the limit of the smaller radius,
   // or the number of contacts if none.
   [[gnu::flatten]]  // the contact law and geometry inlined into the loop
-  std::size_t evaluate_contacts(const Law& law, const Particles<D>& p, const PairList& pairs,
-                                const std::vector<std::uint32_t>& pair_row, const Space& space,
-                                const Sums& target) {
+  std::size_t
+  evaluate_contacts(const Law& law, const Particles<D>& p, const PairList& pairs,
+                    const std::vector<std::uint32_t>& pair_row, const Space& space,
+                    const Sums& target) {
     const auto contacts = static_cast<std::int64_t>(history_.size());
     contacts_.resize(contacts);
     contact_i_.resize(contacts);
@@ -161,8 +161,9 @@ class ForcePass {
   // it mispredicts.
   template <class AfterRow>
   [[gnu::flatten]]  // the grain update inlined into its loops
-  double update_grains(std::span<const std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
-                       bool tethered_wall, AfterRow&& after_row) {
+  double
+  update_grains(std::span<const std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
+                bool tethered_wall, AfterRow&& after_row) {
     const auto n = static_cast<std::int64_t>(kinds.size());
     const std::uint8_t* forced = forced_bits.data();
     const GrainKind* kind = kinds.data();
@@ -213,8 +214,10 @@ class ForcePass {
                   sizeof(Spin<D>) == kSpinWidth * sizeof(double));
     using Lane = LaneVec<D>;
     const auto spin_at = [](const double* base, std::int64_t k) {
-      if constexpr (kSpinWidth == 1) return base[k];  // 2D: a scalar
-      else return LaneVec<kSpinWidth>::at(base, k);
+      if constexpr (kSpinWidth == 1)
+        return base[k];  // 2D: a scalar
+      else
+        return LaneVec<kSpinWidth>::at(base, k);
     };
     const double* x = p.position().data()->data();
     const double* v = p.velocity().data()->data();
@@ -267,9 +270,8 @@ class ForcePass {
     }
   };
   ContactSums contact_sums(const Sums& target) const {
-    return {contact_i_.data(),     contact_j_.data(),     contacts_.forces(),
-            contacts_.torques_i(), contacts_.torques_j(), target.force,
-            target.torque,         target.forced};
+    return {contact_i_.data(),     contact_j_.data(), contacts_.forces(), contacts_.torques_i(),
+            contacts_.torques_j(), target.force,      target.torque,      target.forced};
   }
 
   int threads_;

@@ -45,7 +45,7 @@ struct Ab2Step {
   // A grain with a force or torque at this step or the last.
   double advance(std::size_t i) const {
     const Vec<D> v_new = v[i] + (half_dt * inv_m[i]) * (3.0 * f[i] - f_before[i]);  // [B.21]
-    x[i] += half_dt * (v[i] + v_new);                                                // [B.23]
+    x[i] += half_dt * (v[i] + v_new);                                               // [B.23]
     // The step moved grain i by dt |v + v_new|/2 <= dt max(|v|, |v_new|).
     const double speed2 = std::max(v[i].squaredNorm(), v_new.squaredNorm());
     v[i] = v_new;

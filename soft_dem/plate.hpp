@@ -35,8 +35,8 @@ class Plate : public PlateFace<D> {
   // A grain (centre x, radius r, velocity v, spin w) against the plate: on_contact(geometry,
   // v_rel) while it touches, on_apart() otherwise.
   template <class OnContact, class OnApart>
-  void contact(const Vec<D>& x, double r, const Vec<D>& v, const Spin<D>& w,
-               OnContact&& on_contact, OnApart&& on_apart) const {
+  void contact(const Vec<D>& x, double r, const Vec<D>& v, const Spin<D>& w, OnContact&& on_contact,
+               OnApart&& on_apart) const {
     const Vec<D> from_face = x - this->nearest_point(x);
     const double distance = from_face.norm();
     if (distance >= r) {
