@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
 #include "soft_dem/contact_coefficients.hpp"
+#include "soft_dem/hertz_mindlin.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet::dem {
@@ -521,9 +522,13 @@ namespace {
 template <template <int, bool> class LawOf>
 struct ContactLaw {};
 
-// Calls choose(ContactLaw<...>{}) with the scene's contact law: where laws are registered.
+// Calls choose(ContactLaw<...>{}) with the law of contact.model: where laws are registered.
 template <class Choose>
-decltype(auto) with_contact_law(const ContactSpec&, Choose&& choose) {
+decltype(auto) with_contact_law(ContactModel model, Choose&& choose) {
+  switch (model) {
+    case ContactModel::kHertz: return choose(ContactLaw<HertzMindlin>{});
+    case ContactModel::kLinear: break;
+  }
   return choose(ContactLaw<LinearSpringDashpot>{});
 }
 
@@ -557,7 +562,7 @@ std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
 }  // namespace
 
 void check_scene(const Scene& scene) {
-  with_contact_law(scene.contact, [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
+  with_contact_law(scene.contact.model, [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
     const std::string_view why = scene.dimension == 2 ? LawOf<2, false>::kUnsupported
                                                       : LawOf<3, false>::kUnsupported;
     if (!why.empty()) throw InputError("contact.model", std::string(why));
@@ -567,7 +572,7 @@ void check_scene(const Scene& scene) {
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
   return with_contact_law(
-      scene.contact,
+      scene.contact.model,
       [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) -> std::unique_ptr<Simulator<D>> {
         if constexpr (!LawOf<D, false>::kUnsupported.empty()) {
           throw InputError("contact.model", std::string(LawOf<D, false>::kUnsupported));
