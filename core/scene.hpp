@@ -42,7 +42,7 @@ struct ContactSpec {
   double damping_ratio = 0.5;  // eta_t / eta_n
   // Whether the normal force may pull: the linear dashpot of [3.1] turns attractive at the end
   // of a contact (the overlap still positive, closing faster than k_n/eta_n allows). The study
-  // does not say whether it clamped it at zero; [3.4]-[3.5] assume it did not.
+  // does not say whether it clamped it at zero; [3.4] and [3.5] assume it did not.
   bool clamp_normal = false;
 };
 

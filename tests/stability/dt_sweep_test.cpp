@@ -1,5 +1,5 @@
-// Stability (a): time-step sweep up to the blow-up threshold, per integrator [spec §3,
-// B.21-B.24; velocity Verlet], on the soft DEM backend.
+// Stability (a): time-step sweep up to the blow-up threshold, per integrator [spec §3: AB2,
+// [B.21] [B.22] [B.23]; velocity Verlet], on the soft DEM backend.
 //
 // dt/t_c runs over 0.02 (the study's) ... 1.5. The scene file refuses dt >= t_c; above that the
 // sweep sets run.dt through the Scene struct, to see how the library itself copes.
