@@ -1,17 +1,17 @@
 #include "app/backend_factory.hpp"
 
-#include "app/soft_dem_support.hpp"
 #include "core/errors.hpp"
 #include "event_driven/ed_simulator.hpp"
 #include "event_driven/scene_support.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/scene_support.hpp"
 
 namespace granjet {
 namespace {
 
 const std::vector<Backend>& backends() {
   static const std::vector<Backend> all = {
-      {"soft_dem", /*counts_events=*/false, soft_dem_support, dem::make_dem_simulator<2>,
+      {"soft_dem", /*counts_events=*/false, dem::scene_support, dem::make_dem_simulator<2>,
        dem::make_dem_simulator<3>},
       {"event_driven", /*counts_events=*/true, ed::scene_support, ed::make_ed_simulator<2>,
        ed::make_ed_simulator<3>}};

@@ -181,6 +181,12 @@ const std::vector<Key>& keys() {
          {"hcs", SceneKind::kHcs}}));
     k.push_back(choice_key<int>("scene.dimension", "2 (disks) or 3 (spheres)", FIELD(dimension),
                                 {{"2", 2}, {"3", 3}}));
+    k.push_back(choice_key<ContactModel>(
+        "contact.model",
+        "soft DEM contact law: linear (the study's spring-dashpot) or hertz (Hertz-Mindlin with "
+        "Tsuji damping, 3D), both from contact.restitution and contact.contact_time",
+        FIELD(contact.model),
+        {{"linear", ContactModel::kLinear}, {"hertz", ContactModel::kHertz}}));
     k.push_back(real_key("contact.restitution", "binary restitution coefficient e",
                          FIELD(contact.restitution), {0.0, true, 1.0, false}));
     k.push_back(real_key("contact.contact_time", "binary contact time t_c in d/u0",

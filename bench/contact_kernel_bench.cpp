@@ -1,5 +1,5 @@
-// The contact law alone [3.1]-[3.3]: 2D/3D x frictionless/frictional, on a fixed set of
-// random overlapping contacts (a mix of sticking and sliding). Reports contacts/s.
+// The linear contact law alone ([3.1], [3.2], [3.3]): 2D/3D x frictionless/frictional, on a
+// fixed set of random overlapping contacts (a mix of sticking and sliding). Reports contacts/s.
 // BM_ContactLaw: one contact at a time on Eigen vectors (how the plate and the analysis call
 // it); BM_ContactLawColumns: the force pass's vectorised loop over a ContactTable, torques
 // included.
@@ -7,9 +7,8 @@
 
 #include <random>
 
-#include "soft_dem/contact_coefficients.hpp"
-#include "soft_dem/contact_law.hpp"
 #include "soft_dem/contact_table.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace {
 
@@ -35,7 +34,7 @@ struct RandomContacts {
 
 template <int D, bool kFriction>
 granjet::dem::LinearSpringDashpot<D, kFriction> study_law() {
-  return {granjet::dem::contact_coefficients(granjet::ContactSpec{}), 0.002};
+  return {granjet::ContactSpec{}, 0.002};
 }
 
 void count_contacts(benchmark::State& state, int contacts) {

@@ -8,6 +8,7 @@
 #include "app/scene_file.hpp"
 #include "core/initial_state.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace {
 
@@ -46,13 +47,15 @@ void step_after_impact(benchmark::State& state, const granjet::Scene& scene, Gra
 template <bool kFriction, bool kMono>
 void BM_SkipGain2d(benchmark::State& state) {
   const granjet::Scene scene = jet2d_mono_frictionless();
-  step_after_impact<granjet::dem::DemSimulator<2, kFriction, kMono>>(
+  using Law = granjet::dem::LinearSpringDashpot<2, kFriction>;
+  step_after_impact<granjet::dem::DemSimulator<2, Law, kMono>>(
       state, scene, granjet::build_initial_state<2>(scene));
 }
 
 void BM_SkipGain2dAs3d(benchmark::State& state) {
   const granjet::Scene scene = jet2d_mono_frictionless();
-  step_after_impact<granjet::dem::DemSimulator<3, false, true>>(
+  using Law = granjet::dem::LinearSpringDashpot<3, false>;
+  step_after_impact<granjet::dem::DemSimulator<3, Law, true>>(
       state, scene, in_plane(granjet::build_initial_state<2>(scene)));
 }
 

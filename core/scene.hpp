@@ -29,8 +29,12 @@ enum class JetShape { kCylinder, kRectangle };
 enum class HeightOrigin { kWallCentres, kWallSurface };
 // Restitution laws of the event-driven backend [spec §8].
 enum class RestitutionLaw { kConstant, kVelocityDependent, kTcModel };
+// The soft DEM's contact law: the study's linear spring-dashpot (spec §2) or Hertz-Mindlin with
+// Tsuji damping (soft_dem/hertz_mindlin.hpp, 3D), both from the same (e, t_c).
+enum class ContactModel { kLinear, kHertz };
 
 struct ContactSpec {
+  ContactModel model = ContactModel::kLinear;
   double restitution = 0.75;   // e, binary restitution (spec §2)
   double contact_time = 0.1;   // t_c in d/u0
   double friction = 0.2;       // mu_p
@@ -38,7 +42,7 @@ struct ContactSpec {
   double damping_ratio = 0.5;  // eta_t / eta_n
   // Whether the normal force may pull: the linear dashpot of [3.1] turns attractive at the end
   // of a contact (the overlap still positive, closing faster than k_n/eta_n allows). The study
-  // does not say whether it clamped it at zero; [3.4]-[3.5] assume it did not.
+  // does not say whether it clamped it at zero; [3.4] and [3.5] assume it did not.
   bool clamp_normal = false;
 };
 

@@ -56,8 +56,10 @@ VARIANTS = {
     "ed_hcs2d": ("hcs2d.ini", "event_driven", GAS),
 }
 GROUPS = ("particles", "observables", "connectivity", "contacts", "fields", "analysis")
+# Left out of the summary's digest: timings and paths, and the record of what the backend
+# adapted in the scene (a description of the run, not a result of it).
 TIMINGS = ("wall_seconds", "particle_steps_per_second", "collisions_per_second", "output",
-           "seconds")
+           "seconds", "adaptations")
 
 
 def digest_of(h5, summary):

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/dim.hpp"
-#include "soft_dem/contact_law.hpp"
+#include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/lane_vec.hpp"
 
 namespace granjet::dem {
@@ -74,7 +74,8 @@ class Columns {
   std::array<std::vector<double>, W> col_;
 };
 
-template <int D, bool kFriction>
+// kRotation: whether the law's forces turn the grains (the torque columns exist only then).
+template <int D, bool kRotation>
 class ContactTable {
  public:
   static constexpr int kSpinWidth = D == 3 ? 3 : 1;
@@ -86,7 +87,7 @@ class ContactTable {
     lever_j_.resize(n);
     v_rel_.resize(n);
     force_.resize(n);
-    if constexpr (kFriction) {
+    if constexpr (kRotation) {
       torque_i_.resize(n);
       torque_j_.resize(n);
     }
@@ -100,21 +101,22 @@ class ContactTable {
     v_rel_.set(c, v_rel);
   }
 
-  // The law [3.1]-[3.3] on contacts [begin, end); shear holds their u_t (frictional laws).
+  // The contact law on contacts [begin, end); shear holds their u_t (laws with history).
   template <class Law>
   [[gnu::flatten]]  // the law inlined: only then is the loop vectorised
   void apply(const Law& law, Columns<D>& shear, std::size_t begin, std::size_t end) {
+    static_assert(Law::kNeedsRotation == kRotation);
     // Each contact touches only its own row of every column.
 #pragma GCC ivdep
     for (std::size_t c = begin; c < end; ++c) {
       const ContactGeometryOf<LaneVec<D>> g{normal_.load(c), overlap_[c], lever_i_[c],
                                             lever_j_[c]};
       LaneVec<D> u_t = LaneVec<D>::Zero();
-      if constexpr (kFriction) u_t = shear.load(c);
+      if constexpr (Law::kNeedsHistory) u_t = shear.load(c);
       const LaneVec<D> f = law.force(g, v_rel_.load(c), u_t);
       force_.store(c, f);
-      if constexpr (kFriction) {
-        shear.store(c, u_t);
+      if constexpr (Law::kNeedsHistory) shear.store(c, u_t);
+      if constexpr (kRotation) {
         // Only the tangential part has a lever arm: tau = (contact - centre) x F.
         const auto t = cross(g.n, f);
         torque_i_.set(c, g.lever_i * t);

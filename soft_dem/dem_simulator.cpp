@@ -2,65 +2,39 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
+#include <optional>
+#include <span>
 #include <string>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include <string_view>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "soft_dem/contact_coefficients.hpp"
+#include "soft_dem/hertz_mindlin.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet::dem {
-namespace {
 
-int thread_index() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
-
-// A grain against the immovable plate moves with its own mass, a pair with half of it: twice
-// the pair's springs and dashpots give the same e and t_c [3.4]-[3.5] (equal masses m = 1).
-ContactCoefficients against_plate(ContactCoefficients c) {
-  c.kn *= 2.0;
-  c.eta_n *= 2.0;
-  c.kt *= 2.0;
-  c.eta_t *= 2.0;
-  return c;
-}
-
-// The larger of the two, where a NaN wins and stays (so a blow-up is not lost in a maximum).
-double sticky_max(double largest, double value) {
-  return value > largest || std::isnan(value) ? value : largest;
-}
-
-}  // namespace
-
-#include "soft_dem/plate_contact.inl"
-#include "soft_dem/force_pass.inl"
-
-template <int D, bool kFriction, bool kMono, class Space>
-DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
+template <int D, class Law, bool kMono, class Space>
+DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
                                                         Space space)
     : scene_(scene),
       space_(std::move(space)),
       p_(std::move(initial)),
-      law_{contact_coefficients(scene.contact), scene.dt()},
+      law_(scene.contact, scene.dt()),
       dt_(scene.dt()),
       overlap_limit_(scene.run.max_overlap),
       tethered_(scene.has_wall() && scene.wall.kind == WallKind::kTethered),
-      plate_law_{against_plate(law_.c), scene.dt()},
-      threads_(scene.run.threads) {
-  if (has_plate(scene)) plate_.emplace(scene.wall.diameter);
-  if (kFriction && plate_) plate_shear_.assign(p_.size(), Vec<D>::Zero());
+      threads_(scene.run.threads),
+      pass_(scene.run.threads, scene.run.max_overlap) {
+  if (has_plate(scene)) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
-  // beyond that.
+  // beyond that. The tethers' dashpots are wall.damping_ratio times the eta_n of [3.5] whatever
+  // the contact law (spec §4 gives them in the linear law's terms).
   if (tethered_)
-    wall_ = TetheredWall<D>(p_, scene.wall.spring, scene.wall.damping_ratio * law_.c.eta_n,
+    wall_ = TetheredWall<D>(p_, scene.wall.spring,
+                            scene.wall.damping_ratio * contact_coefficients(scene.contact).eta_n,
                             (scene.wall.spacing + 2.0 * scene.wall.jitter) * (1.0 + 1e-6));
   const std::size_t n = p_.size();
   force_.assign(n, Vec<D>::Zero());
@@ -82,8 +56,8 @@ DemSimulator<D, kFriction, kMono, Space>::DemSimulator(const Scene& scene, Parti
   initial_energy_ = energy().total() + removed_energy_;
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::advance_to(double t) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
   // The first step at or after t (a relative 1e-9 absorbs round-off in t / dt).
   const auto target = static_cast<std::int64_t>(std::ceil(t / dt_ - 1e-9));
   if (step_ >= target) return;
@@ -100,14 +74,14 @@ void DemSimulator<D, kFriction, kMono, Space>::advance_to(double t) {
 // step already stores 2% of E_0 at dt = 0.1 t_c, though the collision ends with e = 0.736);
 // the kinetic bound holds at every instant, so how often the caller looks does not matter.
 // 1% of E_0 leaves room for the integration error.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   if (scene_.contact.restitution >= 1.0) return;
   double kinetic = removed_energy_;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;
     kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kFriction)
+    if constexpr (kRotation)
       kinetic += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
   const double rise = kinetic - initial_energy_;
@@ -126,29 +100,30 @@ void DemSimulator<D, kFriction, kMono, Space>::check_energy() const {
 }
 
 // One step from t to t + dt. Adams-Bashforth-2 needs no force after the position update, so
-// the force pass integrates each grain as its last phase (see force_pass.inl); velocity Verlet
+// the force pass integrates each grain as its last phase (see force_pass.hpp); velocity Verlet
 // needs the forces at t + dt before its corrector, so it takes a predictor pass first.
 // The neighbour list is rebuilt once the fastest grains may have moved skin/2: travel_ adds up
 // dt times the largest speed of each step, a bound on every displacement that costs no extra
 // pass over stored positions.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::step() {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
-    const Ab2Step ab2 = ab2_step();
+    const Ab2Step<D, kRotation> ab2 = ab2_step();
     add_travel(force_pass([&](std::size_t i, bool forced) {
       return forced ? ab2.advance(i) : ab2.coast(i);
     }));
     first_step_ = false;
     ++step_;
   } else {
+    const VerletStep<D, kRotation> predictor = verlet_step();
     const auto n = static_cast<std::int64_t>(p_.size());
     std::vector<double> thread_speed2(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
       double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
 #pragma omp for schedule(static) nowait
-      for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predict_verlet(i));
+      for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predictor.predict(i));
       thread_speed2[thread_index()] = speed2;
     }
     double speed2 = 0.0;
@@ -156,8 +131,9 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
     ++step_;
     add_travel(speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
+    const VerletStep<D, kRotation> corrector = verlet_step();
     force_pass([&](std::size_t i, bool forced) {
-      if (forced) correct_verlet(i);  // else F(t) = F(t + dt) = 0: nothing to correct
+      if (forced) corrector.correct(i);  // else F(t) = F(t + dt) = 0: nothing to correct
       return 0.0;
     });
   }
@@ -165,18 +141,16 @@ void DemSimulator<D, kFriction, kMono, Space>::step() {
   stats_.particle_steps += free_grains_;
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::add_travel(double largest_speed2) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::add_travel(double largest_speed2) {
   travel_ += dt_ * std::sqrt(largest_speed2);
   // Written so that a NaN speed also triggers the rebuild, which reports it.
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
-// Adams-Bashforth-2 [B.21]-[B.24]: v(t+dt) = v + dt/(2m) (3F(t) - F(t-dt)),
-// x(t+dt) = x + dt/2 (v(t+dt) + v(t)); the same for spins with torques. The first step takes
-// F(t-dt) = F(t) [spec §3].
-template <int D, bool kFriction, bool kMono, class Space>
-auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step {
+// Adams-Bashforth-2, with F(t - dt) = F(t) on the first step [spec §3].
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::ab2_step() -> Ab2Step<D, kRotation> {
   return {p_.position().data(),
           p_.velocity().data(),
           p_.spin().data(),
@@ -191,55 +165,63 @@ auto DemSimulator<D, kFriction, kMono, Space>::ab2_step() -> Ab2Step {
           0.5 * dt_};
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::Ab2Step::advance(std::size_t i) const {
-  const Vec<D> v_new = v[i] + (half_dt * inv_m[i]) * (3.0 * f[i] - f_before[i]);
-  x[i] += half_dt * (v[i] + v_new);
-  // The step moved grain i by dt |v + v_new|/2 <= dt max(|v|, |v_new|).
-  const double speed2 = std::max(v[i].squaredNorm(), v_new.squaredNorm());
-  v[i] = v_new;
-  f_next[i].setZero();  // the swap after the pass makes f F(t-dt) and this the next F
-  if constexpr (kFriction) {
-    w[i] += (half_dt * inv_inertia[i]) * (3.0 * t[i] - t_before[i]);
-    t_next[i] = Dim<D>::zero_spin();
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotation> {
+  return {p_.position().data(), p_.velocity().data(),     p_.spin().data(),
+          force_.data(),        force_prev_.data(),       torque_.data(),
+          torque_prev_.data(),  p_.inverse_mass().data(), inv_inertia_.data(),
+          dt_};
+}
+
+// The whole pass (the phases of force_pass.hpp): the tethers, the pairs, the plate, then each
+// grain's update. force_ and torque_ must be zero on entry.
+template <int D, class Law, bool kMono, class Space>
+template <class AfterRow>
+[[gnu::flatten]]  // inline the contact law and the grain update into their loops
+double DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
+  if (tethered_)
+    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+  for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
+  pass_.find_contacts(p_, pairs_, pair_row_, space_);
+  const std::size_t first_blown = pass_.evaluate_contacts(
+      law_, p_, pairs_, pair_row_, space_, {force_.data(), torque_.data(), forced_.data()});
+  const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
+  stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
+
+  const auto n = static_cast<std::int64_t>(p_.size());
+  std::int64_t first_blown_on_plate = n;
+  if (plate_) {  // after the contacts: the same sum order for any thread count
+    using Touch = typename Plate<D, WallLaw>::Touch;
+    const auto x = p_.position();
+    const auto v = p_.velocity();
+    const auto w = p_.spin();
+    const auto radius = p_.radius();
+    std::uint8_t* forced = forced_.data();
+#pragma omp parallel for num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Touch touch = plate_->add_force(i, x[i], radius_of(radius, i), v[i], w[i],
+                                            overlap_limit_, force_[i], torque_[i]);
+      if (touch != Touch::kApart) forced[i] |= 1;
+      if (touch == Touch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
+    }
   }
-  return speed2;
-}
-
-template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::Ab2Step::coast(std::size_t i) const {
-  x[i] += half_dt * (v[i] + v[i]);  // v_new = v: the same rounding as advance
-  return v[i].squaredNorm();
-}
-
-// Velocity Verlet, predictor: x += dt v + dt^2/(2m) F(t), v += dt/m F(t). The dashpots then see
-// this predicted v(t+dt) rather than the half-step velocity, which would lag by dt/2 and bias
-// the restitution by O(dt) (LAMMPS's nve/sphere gives e = 0.7567 for 0.75 at dt = t_c/50).
-template <int D, bool kFriction, bool kMono, class Space>
-double DemSimulator<D, kFriction, kMono, Space>::predict_verlet(std::size_t i) {
-  Vec<D>& v = p_.velocity()[i];
-  const Vec<D> dv = (dt_ * p_.inverse_mass()[i]) * force_prev_[i];
-  p_.position()[i] += dt_ * (v + 0.5 * dv);
-  const double speed2 = std::max(v.squaredNorm(), (v + dv).squaredNorm());  // bounds the move
-  v += dv;
-  if constexpr (kFriction) p_.spin()[i] += (dt_ * inv_inertia_[i]) * torque_prev_[i];
-  return speed2;
-}
-
-// Velocity Verlet, corrector: v(t+dt) = v(t) + dt/(2m) (F(t) + F(t+dt)).
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::correct_verlet(std::size_t i) {
-  p_.velocity()[i] += (0.5 * dt_ * p_.inverse_mass()[i]) * (force_[i] - force_prev_[i]);
-  force_prev_[i].setZero();  // see Ab2Step::advance
-  if constexpr (kFriction) {
-    p_.spin()[i] += (0.5 * dt_ * inv_inertia_[i]) * (torque_[i] - torque_prev_[i]);
-    torque_prev_[i] = Dim<D>::zero_spin();
+  const double largest = pass_.update_grains(forced_, p_.kind(), tethered_, after_row);
+  // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
+  // row i + 1); the state it integrated is lost anyway.
+  if (first_blown < contact_pair.size()) {
+    const std::uint32_t k = contact_pair[first_blown];
+    if (pair_row_[k] <= first_blown_on_plate) throw_overlap(pair_row_[k], pairs_.partner[k]);
   }
+  if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
+  // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
+  force_.swap(force_prev_);
+  if constexpr (kRotation) torque_.swap(torque_prev_);
+  return largest;
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
+template <int D, class Law, bool kMono, class Space>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
+void DemSimulator<D, Law, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
                                                      OnApart&& on_apart) const {
   const auto x = p_.position();
   const auto radius = p_.radius();
@@ -260,17 +242,17 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact_of(std::size_t i
   }
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-Vec<D> DemSimulator<D, kFriction, kMono, Space>::relative_velocity(
+template <int D, class Law, bool kMono, class Space>
+Vec<D> DemSimulator<D, Law, kMono, Space>::relative_velocity(
     std::size_t i, std::size_t j, const ContactGeometry<D>& g) const {
   const auto v = p_.velocity();
   const auto w = p_.spin();
-  return dem::relative_velocity<kFriction>(v[i], v[j], w[i], w[j], g);
+  return dem::relative_velocity<kRotation>(v[i], v[j], w[i], w[j], g);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
+template <int D, class Law, bool kMono, class Space>
 template <class OnContact, class OnApart>
-void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_contact,
+void DemSimulator<D, Law, kMono, Space>::for_each_contact(OnContact&& on_contact,
                                                   OnApart&& on_apart) const {
   for (std::size_t i = 0; i < p_.size(); ++i)
     for_each_contact_of(
@@ -279,9 +261,24 @@ void DemSimulator<D, kFriction, kMono, Space>::for_each_contact(OnContact&& on_c
         on_apart);
 }
 
+template <int D, class Law, bool kMono, class Space>
+template <class OnContact>
+void DemSimulator<D, Law, kMono, Space>::for_each_plate_contact(
+    OnContact&& on_contact) const {
+  if (!plate_) return;
+  const auto x = p_.position();
+  const auto v = p_.velocity();
+  const auto w = p_.spin();
+  const auto radius = p_.radius();
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    plate_->contact(
+        x[i], radius_of(radius, i), v[i], w[i],
+        [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) { on_contact(i, g, v_rel); }, [] {});
+}
+
 // Grain i overlapping grain j, or the plate when j == i.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::throw_overlap(std::size_t i, std::size_t j) const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::throw_overlap(std::size_t i, std::size_t j) const {
   std::vector<GrainId> ids{p_.id()[i]};
   if (j != i) ids.push_back(p_.id()[j]);
   throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
@@ -289,8 +286,8 @@ void DemSimulator<D, kFriction, kMono, Space>::throw_overlap(std::size_t i, std:
                     step_, time(), ids);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::check_finite() const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::check_finite() const {
   std::vector<GrainId> bad;
   for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
     if (!p_.position()[i].allFinite() || !p_.velocity()[i].allFinite()) bad.push_back(p_.id()[i]);
@@ -299,8 +296,8 @@ void DemSimulator<D, kFriction, kMono, Space>::check_finite() const {
 
 // Jet grains farther than region.radius from the axis or region.below behind the target plane
 // are removed; their energy is booked so the balance still closes.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
   if (!scene_.has_wall()) return;
   constexpr int kAxis = Dim<D>::kJetAxis;
   const double r2_max = scene_.region.radius * scene_.region.radius;
@@ -318,7 +315,7 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
     ++stats_.removed;
     index_of_id_[p_.id()[i]] = kRemoved;
     removed_energy_ += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kFriction)
+    if constexpr (kRotation)
       removed_energy_ += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
   if (keep.size() == p_.size()) return;
@@ -326,25 +323,18 @@ void DemSimulator<D, kFriction, kMono, Space>::remove_escaped() {
   Particles<D>::gather_one(force_prev_, keep);
   Particles<D>::gather_one(torque_prev_, keep);
   Particles<D>::gather_one(inv_inertia_, keep);
-  if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, keep);
+  if (plate_) plate_->gather(keep);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-auto DemSimulator<D, kFriction, kMono, Space>::histories() const -> std::vector<History> {
-  std::vector<History> history;
-  if constexpr (kFriction)
-    for (std::size_t c = 0; c < contact_pair_.size(); ++c) {
-      const std::uint32_t k = contact_pair_[c];
-      history.push_back({p_.id()[pair_row_[k]], p_.id()[pairs_.partner[k]],
-                         contact_shear_.template get<Vec<D>>(c)});
-    }
-  return history;
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::histories() const -> std::vector<History> {
+  return pass_.history().by_ids(p_.id(), pair_row_, pairs_.partner);
 }
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History>& history) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& history) {
   check_finite();
   remove_escaped();
   double max_radius = 0.0;
@@ -364,7 +354,7 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History
   forced_.assign(p_.size(), 3);  // unknown after the reordering: assume forces
   torque_.assign(p_.size(), Dim<D>::zero_spin());
   Particles<D>::gather_one(inv_inertia_, order);
-  if (!plate_shear_.empty()) Particles<D>::gather_one(plate_shear_, order);
+  if (plate_) plate_->gather(order);
   for (std::size_t i = 0; i < p_.size(); ++i)
     index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
 
@@ -377,27 +367,14 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History
   pair_row_.resize(pairs_.size());
   for (std::uint32_t i = 0; i < p_.size(); ++i)
     std::fill(pair_row_.begin() + pairs_.first[i], pair_row_.begin() + pairs_.first[i + 1], i);
-  // The contacts carried over, by their new list index.
-  std::vector<std::pair<std::uint32_t, Vec<D>>> carried;
-  for (const History& h : history) {
-    const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
-    if (a == kRemoved || b == kRemoved) continue;
-    const std::uint32_t i = std::min(a, b), j = std::max(a, b);
-    // Still touching, so still listed: find j in row i (a handful of partners).
-    for (std::uint32_t k = pairs_.first[i]; k < pairs_.first[i + 1]; ++k)
-      if (pairs_.partner[k] == j) {
-        carried.emplace_back(k, h.shear);
-        break;
-      }
-  }
-  std::sort(carried.begin(), carried.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
-  contact_pair_.resize(carried.size());
-  contact_shear_.resize(carried.size());
-  for (std::size_t c = 0; c < carried.size(); ++c) {
-    contact_pair_[c] = carried[c].first;
-    contact_shear_.set(c, carried[c].second);
-  }
+  pass_.history().restore(
+      history,
+      [this](GrainId id) -> std::optional<std::uint32_t> {
+        const std::uint32_t i = index_of_id_[id];
+        if (i == kRemoved) return std::nullopt;
+        return i;
+      },
+      pairs_);
   travel_ = 0.0;
   needs_rebuild_ = false;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
@@ -407,13 +384,14 @@ void DemSimulator<D, kFriction, kMono, Space>::rebuild(const std::vector<History
 // A rebuild first: it re-sorts the grains by cell and lists the pairs anew from positions
 // alone, so a simulator that takes the stored grains (already in that order) and rebuilds gets
 // the same order, list and carried histories, and every later sum runs in the same order.
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::checkpoint(StateArchive& a) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::checkpoint(StateArchive& a) {
   rebuild();
   put_particles(a, "dem/grains", p_);
   a.put_rows<Vec<D>>("dem/force_prev", force_prev_);
   a.put_rows<Spin<D>>("dem/torque_prev", torque_prev_);
-  a.put_rows<Vec<D>>("dem/plate_shear", plate_shear_);
+  a.put_rows<Vec<D>>("dem/plate_shear",
+                     plate_ ? plate_->shear() : std::vector<Vec<D>>());
   std::vector<GrainId> pair;
   std::vector<Vec<D>> shear;
   for (const History& h : histories()) {
@@ -431,16 +409,17 @@ void DemSimulator<D, kFriction, kMono, Space>::checkpoint(StateArchive& a) {
   put_stats(a, "dem/stats", stats_);
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::restore(const StateArchive& a) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   p_ = get_particles<D>(a, "dem/grains");
   const std::size_t n = p_.size();
   force_prev_ = a.rows<Vec<D>>("dem/force_prev");
   torque_prev_ = a.rows<Spin<D>>("dem/torque_prev");
-  plate_shear_ = a.rows<Vec<D>>("dem/plate_shear");
-  if (force_prev_.size() != n || torque_prev_.size() != n ||
-      (!plate_shear_.empty() && plate_shear_.size() != n))
+  std::vector<Vec<D>> plate_shear = a.rows<Vec<D>>("dem/plate_shear");
+  const std::size_t plate_rows = plate_ && Law::kNeedsHistory ? n : 0;
+  if (force_prev_.size() != n || torque_prev_.size() != n || plate_shear.size() != plate_rows)
     throw std::runtime_error("checkpoint entries under dem/ differ in length");
+  if (plate_) plate_->shear() = std::move(plate_shear);
   inv_inertia_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double r = p_.radius()[i];
@@ -471,92 +450,91 @@ void DemSimulator<D, kFriction, kMono, Space>::restore(const StateArchive& a) {
   stats_ = get_stats(a, "dem/stats");
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
   const double elapsed = time() - last_collect_time_;
   last_collect_time_ = time();
   const auto x = p_.position();
   const auto id = p_.id();
   for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>& v_rel) {
-    Vec<D> shear = history(k);  // a copy: sampling must not advance the history
+    Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
     const Vec<D> f = law_.force(g, v_rel, shear);
     // The partner's nearest image: position_i - position_j is the contact's separation.
     out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
   }, [](std::uint32_t) {});
-  if (!plate_) return;
-  for (std::size_t i = 0; i < p_.size(); ++i)
-    plate_contact_of(
-        i,
-        [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-          Vec<D> shear = plate_history(i);  // a copy, as above
-          const Vec<D> f = plate_law_.force(g, v_rel, shear);
-          out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
-        },
-        [] {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+    const Vec<D> f = plate_->force(i, g, v_rel);
+    out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
+  });
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-void DemSimulator<D, kFriction, kMono, Space>::sample_forces(ForceSample<D>& out) const {
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) const {
   const auto id = p_.id();
   out.contacts.clear();
   out.total.assign(p_.size(), Vec<D>::Zero());
   const auto add = [&](std::size_t i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
-    // Without friction the law's force lies along n: projecting would only add rounding.
-    const Vec<D> normal = kFriction ? Vec<D>(f.dot(g.n) * g.n) : f;
+    // A law that turns no grain has no tangential force: projecting would only add rounding.
+    const Vec<D> normal = kRotation ? Vec<D>(f.dot(g.n) * g.n) : f;
     out.contacts.push_back({id[i], j, normal, f - normal, g.overlap});
     out.total[i] += f;
   };
   for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>& v_rel) {
-    Vec<D> shear = history(k);  // a copy: sampling must not advance the history
+    Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
     const Vec<D> f = law_.force(g, v_rel, shear);
     add(i, id[j], g, f);
     out.total[j] -= f;
   }, [](std::uint32_t) {});
-  if (plate_)
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      plate_contact_of(
-          i,
-          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-            Vec<D> shear = plate_history(i);  // a copy, as above
-            add(i, kPlateId, g, plate_law_.force(g, v_rel, shear));
-          },
-          [] {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+    add(i, kPlateId, g, plate_->force(i, g, v_rel));
+  });
   if (tethered_)
     wall_.add_forces(p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
 }
 
-template <int D, bool kFriction, bool kMono, class Space>
-EnergyBalance DemSimulator<D, kFriction, kMono, Space>::energy() const {
+template <int D, class Law, bool kMono, class Space>
+EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;  // immovable wall grains carry no energy
     e.kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kFriction)
+    if constexpr (kRotation)
       e.rotational += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
   for_each_contact([&](std::size_t, std::size_t, std::uint32_t k, const ContactGeometry<D>& g,
                        const Vec<D>&) {
-    e.elastic += law_.elastic_energy(g, history(k));
+    e.elastic += law_.elastic_energy(g, pass_.history().of(k));
   }, [](std::uint32_t) {});
-  if (plate_)
-    for (std::size_t i = 0; i < p_.size(); ++i)
-      plate_contact_of(
-          i,
-          [&](const ContactGeometry<D>& g, const Vec<D>&) {
-            e.elastic += plate_law_.elastic_energy(g, plate_history(i));
-          },
-          [] {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>&) {
+    e.elastic += plate_->elastic_energy(i, g);
+  });
   if (tethered_) e.elastic += wall_.elastic_energy(p_, [this](GrainId id) { return index_of(id); });
   e.removed = removed_energy_;
   e.dissipated = initial_energy_ - e.total() - e.removed;
   return e;
 }
 
-// The periodic gas scenes: unit grains (so monodisperse) in the box of gas_lattice.
+namespace {
+
+// A contact law, as the template the factory instantiates.
+template <template <int, bool> class LawOf>
+struct ContactLaw {};
+
+// Calls choose(ContactLaw<...>{}) with the law of contact.model: where laws are registered.
+template <class Choose>
+decltype(auto) with_contact_law(ContactModel model, Choose&& choose) {
+  switch (model) {
+    case ContactModel::kHertz: return choose(ContactLaw<HertzMindlin>{});
+    case ContactModel::kLinear: break;
+  }
+  return choose(ContactLaw<LinearSpringDashpot>{});
+}
+
+// The periodic gas scenes' box (gas_lattice's), which must hold three neighbour cells across.
 template <int D>
-std::unique_ptr<Simulator<D>> make_periodic_dem_simulator(const Scene& scene) {
+PeriodicBox<D> periodic_box(const Scene& scene) {
   const PeriodicBox<D> box(gas_lattice<D>(scene.gas).box);
   const double cut = 1.0 + scene.run.skin;
   if (box.box.minCoeff() < 3.0 * cut)
@@ -564,41 +542,60 @@ std::unique_ptr<Simulator<D>> make_periodic_dem_simulator(const Scene& scene) {
                                        " d across) must be at least three neighbour cells of "
                                        "1 + run.skin = " + std::to_string(cut) +
                                        " d wide; use more grains or a lower gas.phi");
+  return box;
+}
+
+template <int D, class Law>
+std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
+  // The gases' grains are unit grains (Scene::monodisperse), so they need no other instance.
+  if (scene.periodic()) {
+    const PeriodicBox<D> box = periodic_box<D>(scene);
+    return std::make_unique<DemSimulator<D, Law, true, PeriodicBox<D>>>(
+        scene, build_initial_state<D>(scene), box);
+  }
   Particles<D> initial = build_initial_state<D>(scene);
-  if (scene.frictional())
-    return std::make_unique<DemSimulator<D, true, true, PeriodicBox<D>>>(scene, std::move(initial),
-                                                                         box);
-  return std::make_unique<DemSimulator<D, false, true, PeriodicBox<D>>>(scene, std::move(initial),
-                                                                        box);
+  if (scene.monodisperse())
+    return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial));
+  return std::make_unique<DemSimulator<D, Law, false>>(scene, std::move(initial));
+}
+
+}  // namespace
+
+std::string contact_law_refusal(const Scene& scene) {
+  return with_contact_law(scene.contact.model,
+                          [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
+                            return std::string(scene.dimension == 2 ? LawOf<2, false>::kUnsupported
+                                                                    : LawOf<3, false>::kUnsupported);
+                          });
 }
 
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
-  if (scene.periodic()) return make_periodic_dem_simulator<D>(scene);
-  Particles<D> initial = build_initial_state<D>(scene);
-  const auto radii = initial.radius();
-  const bool mono = std::adjacent_find(radii.begin(), radii.end(), std::not_equal_to<>()) ==
-                    radii.end();
-  if (scene.frictional()) {
-    if (mono) return std::make_unique<DemSimulator<D, true, true>>(scene, std::move(initial));
-    return std::make_unique<DemSimulator<D, true, false>>(scene, std::move(initial));
-  }
-  if (mono) return std::make_unique<DemSimulator<D, false, true>>(scene, std::move(initial));
-  return std::make_unique<DemSimulator<D, false, false>>(scene, std::move(initial));
+  return with_contact_law(
+      scene.contact.model,
+      [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) -> std::unique_ptr<Simulator<D>> {
+        if constexpr (!LawOf<D, false>::kUnsupported.empty()) {
+          throw InputError("contact.model", std::string(LawOf<D, false>::kUnsupported));
+        } else {
+          // The law with its tangential part when the scene needs one: its traits then say
+          // what is stored and integrated.
+          if (scene.needs_history() || scene.needs_rotation())
+            return make_with_law<D, LawOf<D, true>>(scene);
+          return make_with_law<D, LawOf<D, false>>(scene);
+        }
+      });
 }
 
-template class DemSimulator<2, false, false>;
-template class DemSimulator<2, false, true>;
-template class DemSimulator<2, true, false>;
-template class DemSimulator<2, true, true>;
-template class DemSimulator<3, false, false>;
-template class DemSimulator<3, false, true>;
-template class DemSimulator<3, true, false>;
-template class DemSimulator<3, true, true>;
-template class DemSimulator<2, false, true, PeriodicBox<2>>;
-template class DemSimulator<2, true, true, PeriodicBox<2>>;
-template class DemSimulator<3, false, true, PeriodicBox<3>>;
-template class DemSimulator<3, true, true, PeriodicBox<3>>;
+// The linear law's instances, for tests and benchmarks that build a simulator directly; other
+// laws are instantiated by the factory above.
+template class DemSimulator<2, LinearSpringDashpot<2, false>, false>;
+template class DemSimulator<2, LinearSpringDashpot<2, false>, true>;
+template class DemSimulator<2, LinearSpringDashpot<2, true>, false>;
+template class DemSimulator<2, LinearSpringDashpot<2, true>, true>;
+template class DemSimulator<3, LinearSpringDashpot<3, false>, false>;
+template class DemSimulator<3, LinearSpringDashpot<3, false>, true>;
+template class DemSimulator<3, LinearSpringDashpot<3, true>, false>;
+template class DemSimulator<3, LinearSpringDashpot<3, true>, true>;
 template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
 

@@ -1,5 +1,5 @@
-// A plain vector of W doubles with the arithmetic the contact law uses, spelled like Eigen's
-// (dot, squaredNorm, Zero) so that the one law [3.1]-[3.3] serves both. The force pass runs
+// A plain vector of W doubles with the arithmetic the contact laws use, spelled like Eigen's
+// (dot, squaredNorm, Zero) so that each law is written once for both. The force pass runs
 // the law on these over per-contact columns (soft_dem/contact_table.hpp): GCC vectorises that
 // loop, several contacts per register, but not one over Eigen's fixed-size vectors, whose
 // copies stay in memory and whose own SSE code for 2-vectors blocks its loop vectoriser.

@@ -116,8 +116,9 @@ TEST(BackendSupport, CampaignFindsRunsThatStoredTheRequestedScene) {
   fs::remove_all(dir);
   std::istringstream text("[campaign]\nseeds = 1\n[hard]\nresults = HC\nscene = jet2d.ini\n"
                           "backend = event_driven\njet.grains = 50\n");
-  const CampaignPlan plan =
-      plan_campaign(parse_campaign(text, "test.ini", GRANJET_SCENES_DIR), {.out_dir = dir});
+  PlanOptions options;
+  options.out_dir = dir;
+  const CampaignPlan plan = plan_campaign(parse_campaign(text, "test.ini", GRANJET_SCENES_DIR), options);
   ASSERT_EQ(plan.runs.size(), 1u);
   const PlannedRun& run = plan.runs.front();
   EXPECT_EQ(run.scene.wall.kind, WallKind::kFixed);

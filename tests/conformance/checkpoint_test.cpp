@@ -1,7 +1,7 @@
 // Checkpoints (issue 14): a simulator built anew from the scene that restores a checkpoint goes
 // on bit-identically to the one that wrote it, on both backends, both integrators, friction on
-// and off, tethered, fixed and plate targets, a periodic gas, 1 and 2 threads, and a resume of
-// a resume.
+// and off, tethered, fixed and plate targets, a periodic gas, 1 and 2 threads, both soft contact
+// laws, and a resume of a resume.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -124,6 +124,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"dem_jet3d_plate_threads2", "jet3d.ini", "soft_dem",
              {"wall.kind=plate", "run.threads=2"}},
         Case{"dem_jet2d_bidisperse", "jet2d.ini", "soft_dem", {}},
+        Case{"dem_jet3d_hertz_plate", "jet3d.ini", "soft_dem",
+             {"contact.model=hertz", "wall.kind=plate"}},
         Case{"dem_gas3d_periodic", "hcs3d.ini", "soft_dem", {}},
         Case{"ed_jet3d", "jet3d.ini", "event_driven", {}},
         Case{"ed_jet2d_tc_model", "jet2d.ini", "event_driven", {"ed.restitution_law=tc_model"}},

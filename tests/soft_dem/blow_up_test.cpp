@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet {
 namespace {
@@ -24,7 +25,7 @@ TEST(BlowUp, OverflowingGrainIsReportedAsNonFiniteWithItsId) {
     Particles<3> p;
     p.add(7, GrainKind::kFree, Vec<3>::Zero(), Vec<3>(1e308, 0, 0), 0.5, 1.0);
     p.add(8, GrainKind::kFree, Vec<3>(5, 0, 0), Vec<3>::Zero(), 0.5, 1.0);
-    dem::DemSimulator<3, false> sim(free_space(integrator), p);
+    dem::DemSimulator<3, dem::LinearSpringDashpot<3, false>> sim(free_space(integrator), p);
     try {
       sim.advance_to(10.0);  // x overflows to inf near t = 1.8
       ADD_FAILURE() << "no blow-up reported";
@@ -42,7 +43,8 @@ TEST(BlowUp, DeepOverlapNamesThePair) {
   p.add(3, GrainKind::kFree, Vec<3>::Zero(), Vec<3>::Zero(), 0.5, 1.0);
   p.add(4, GrainKind::kFree, Vec<3>(0.6, 0, 0), Vec<3>::Zero(), 0.5, 1.0);  // overlap 0.4 > 0.25
   try {
-    dem::DemSimulator<3, false> sim(free_space(IntegratorKind::kAdamsBashforth2), p);
+    dem::DemSimulator<3, dem::LinearSpringDashpot<3, false>> sim(
+        free_space(IntegratorKind::kAdamsBashforth2), p);
     sim.advance_to(0.01);
     ADD_FAILURE() << "no blow-up reported";
   } catch (const BlowUpError& e) {
@@ -60,7 +62,7 @@ TEST(BlowUp, TheCallWhoseStepOverflowsReportsIt) {
     p.add(7, GrainKind::kFree, Vec<3>::Zero(), Vec<3>(1e307, 0, 0), 0.5, 1.0);
     p.add(8, GrainKind::kFree, Vec<3>(0, 5, 0), Vec<3>::Zero(), 0.5, 1.0);
     const Scene scene = free_space(integrator);
-    dem::DemSimulator<3, false> sim(scene, p);
+    dem::DemSimulator<3, dem::LinearSpringDashpot<3, false>> sim(scene, p);
     std::int64_t k = 1;
     try {
       for (; k < 100000; ++k) {
@@ -85,7 +87,7 @@ TEST(BlowUp, EnergyCreatedByTooLongAStepIsReported) {
     p.add(2, GrainKind::kFree, Vec<3>(1.0537, 0, 0), Vec<3>::Zero(), 0.5, 1.0);
     Scene scene = free_space(integrator);
     scene.run.dt = 0.5 * scene.contact.contact_time;
-    dem::DemSimulator<3, false> sim(scene, p);
+    dem::DemSimulator<3, dem::LinearSpringDashpot<3, false>> sim(scene, p);
     EXPECT_THROW(
         {
           try {
@@ -99,7 +101,7 @@ TEST(BlowUp, EnergyCreatedByTooLongAStepIsReported) {
     // At dt = 0.1 t_c the same collision finishes quietly (e = 0.736), even looked at every
     // step: a contact that starts inside a step stores energy it never had, but not as motion.
     scene.run.dt = 0.1 * scene.contact.contact_time;
-    dem::DemSimulator<3, false> coarse(scene, p);
+    dem::DemSimulator<3, dem::LinearSpringDashpot<3, false>> coarse(scene, p);
     for (int k = 1; k <= 100; ++k) EXPECT_NO_THROW(coarse.advance_to(k * scene.dt()));
     EXPECT_LT(coarse.energy().kinetic, 0.5);
   }

@@ -6,6 +6,7 @@
 
 #include "../common/lattice_cluster.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet {
 namespace {
@@ -23,7 +24,7 @@ TYPED_TEST(ElasticCluster, MomentumToRoundOffEnergyWithinTwoPerMille) {
   scene.contact.restitution = 1.0;
   scene.contact.friction = 0.0;
   const Particles<D> start = testing::lattice_cluster<D>(D == 2 ? 20 : 8, 99, 0.5, 0.0);
-  dem::DemSimulator<D, false> sim(scene, start);
+  dem::DemSimulator<D, dem::LinearSpringDashpot<D, false>> sim(scene, start);
   const Vec<D> p0 = total_momentum(start);
   const double e0 = sim.energy().total();
   sim.advance_to(20.0);  // 10^4 steps; the cluster has flown apart

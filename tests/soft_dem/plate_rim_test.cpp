@@ -6,6 +6,7 @@
 
 #include "core/plate_face.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
 
 namespace granjet {
 namespace {
@@ -29,7 +30,7 @@ Scene plate_scene() {
 Vec<2> after_flight(const Vec<2>& x, const Vec<2>& v, double t_end) {
   Particles<2> p;
   p.add(0, GrainKind::kFree, x, v, 0.5, 1.0);
-  dem::DemSimulator<2, false> sim(plate_scene(), std::move(p));
+  dem::DemSimulator<2, dem::LinearSpringDashpot<2, false>> sim(plate_scene(), std::move(p));
   sim.advance_to(t_end);
   return sim.particles().velocity()[0];
 }

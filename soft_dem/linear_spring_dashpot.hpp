@@ -1,62 +1,64 @@
-// The soft-sphere contact law [3.1]-[3.3]: linear spring-dashpot in the normal direction,
-// tangential spring-dashpot with Coulomb sliding. A small evaluator for the one pair loop; its
-// static traits let the loop drop history and rotation when the scene is frictionless.
+// The study's contact law (spec §2): a linear spring-dashpot along the normal [3.1], a
+// tangential spring-dashpot [3.2] with Coulomb sliding [3.3], coefficients from the scene's
+// (e, t_c) by [3.4] and [3.5] (soft_dem/contact_coefficients.hpp). contact.model = linear.
+//
+// It is also the prototype of a contact law (README, "How to add a contact law"): a class
+// template Law<D, kFriction>, kFriction meaning "with its tangential part" (the factory,
+// make_dem_simulator, passes true when the scene needs contact history or rotation), with
+//   kNeedsHistory, kNeedsRotation  what the simulator keeps and integrates: the tangential
+//                                  history u_t of each touching pair (and against the plate),
+//                                  the spins and torques; false compiles them out;
+//   kUnsupported                   why the law cannot run in D dimensions (empty: it can; the
+//                                  factory then refuses contact.model with this reason);
+//   Law(const ContactSpec&, dt)    its coefficients from the scene's contact keys;
+//   force(g, v_rel, shear)         the force on i from j (ContactGeometryOf<V>, the velocity of
+//                                  i's surface relative to j's, u_t advanced in place), a
+//                                  template over V = Vec<D> and LaneVec<D> that selects rather
+//                                  than branches (the force pass's loop must vectorise);
+//   elastic_energy(g, shear)       for the energy books;
+//   Wall, against_wall()           the law of a grain against the immovable plate, where the
+//                                  geometry's lever_j is 0 and the partner has infinite mass.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 #include <type_traits>
 
 #include "core/dim.hpp"
+#include "core/scene.hpp"
 #include "soft_dem/contact_coefficients.hpp"
-#include "soft_dem/lane_vec.hpp"
+#include "soft_dem/contact_geometry.hpp"
 
 namespace granjet::dem {
-
-// Geometry of one contact between grains i and j: n points from j to i, the lever arms reach
-// the common contact point on the line of centres (l_i + l_j = |r_i - r_j|), so the tangential
-// force conserves angular momentum exactly. V is Vec<D>, or LaneVec<D> in the force pass.
-template <class V>
-struct ContactGeometryOf {
-  V n;
-  double overlap;
-  double lever_i;
-  double lever_j;
-};
-template <int D>
-using ContactGeometry = ContactGeometryOf<Vec<D>>;
-
-template <class V>
-inline ContactGeometryOf<V> contact_geometry(const V& r_ij, double dist, double radius_i,
-                                             double radius_j) {
-  const double overlap = radius_i + radius_j - dist;
-  return {r_ij * (1.0 / dist), overlap, radius_i - 0.5 * overlap, radius_j - 0.5 * overlap};
-}
-
-inline Vec<2> spin_cross(double w, const Vec<2>& r) { return Dim<2>::spin_cross(w, r); }
-inline Vec<3> spin_cross(const Vec<3>& w, const Vec<3>& r) { return Dim<3>::spin_cross(w, r); }
-
-// The velocity of i's surface relative to j's at their contact point (w: spins, kRotation:
-// whether the grains turn): du_t/dt of [3.2] with its rotation term, and du_n/dt of [3.1]. V is Vec<D> with Dim<D>::Spin, or LaneVec<D> with its spin type.
-template <bool kRotation, class V, class S>
-inline V relative_velocity(const V& v_i, const V& v_j, const S& w_i, const S& w_j,
-                           const ContactGeometryOf<V>& g) {
-  V v_rel = v_i - v_j;
-  if constexpr (kRotation) v_rel -= spin_cross(S(g.lever_i * w_i + g.lever_j * w_j), g.n);
-  return v_rel;
-}
 
 template <int D, bool kFriction>
 struct LinearSpringDashpot {
   static constexpr bool kNeedsHistory = kFriction;
   static constexpr bool kNeedsRotation = kFriction;
+  static constexpr std::string_view kUnsupported = "";
+  using Wall = LinearSpringDashpot;
 
+  LinearSpringDashpot(const ContactSpec& spec, double time_step)
+      : LinearSpringDashpot(contact_coefficients(spec), time_step) {}
   LinearSpringDashpot(const ContactCoefficients& coefficients, double time_step)
       : c(coefficients), dt(time_step), inv_kt(1.0 / coefficients.kt) {}
 
   ContactCoefficients c;
   double dt;
   double inv_kt;  // sliding resets the spring often: multiply, do not divide
+
+  // A grain against the immovable plate moves with its own mass, a pair with half of it: twice
+  // the pair's springs and dashpots give the pair's e and t_c, [3.4] and [3.5] (equal masses
+  // m = 1).
+  Wall against_wall() const {
+    ContactCoefficients w = c;
+    w.kn *= 2.0;
+    w.eta_n *= 2.0;
+    w.kt *= 2.0;
+    w.eta_t *= 2.0;
+    return {w, dt};
+  }
 
   // Force on i from j (j receives its negative). v_rel is the velocity of i's surface relative
   // to j's at the contact point. The tangential history `shear` (u_t) grows by v_t dt and is

@@ -1,13 +1,17 @@
-#include "app/soft_dem_support.hpp"
+#include "soft_dem/scene_support.hpp"
 
 #include <iomanip>
 #include <sstream>
 
-namespace granjet {
+#include "soft_dem/dem_simulator.hpp"
 
-SceneSupport soft_dem_support(const Scene& scene) {
+namespace granjet::dem {
+
+SceneSupport scene_support(const Scene& scene) {
   SceneSupport support;
   support.resolved = scene;
+  if (const std::string why = contact_law_refusal(scene); !why.empty())
+    support.unsupported.push_back({"contact.model", why});
   if (scene.output.omega && !scene.needs_rotation())
     support.unsupported.push_back(
         {"output.fields",
@@ -24,4 +28,4 @@ SceneSupport soft_dem_support(const Scene& scene) {
   return support;
 }
 
-}  // namespace granjet
+}  // namespace granjet::dem

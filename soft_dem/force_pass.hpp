@@ -1,0 +1,289 @@
+// The pair part of the soft DEM's force pass, serial or shared among run.threads, and the
+// update of the grains that ends it. The simulator runs the phases in this order:
+//  1. find_contacts: the listed pairs that touch (a distance test per pair, kept branch-free:
+//     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
+//     of varying length mispredicts), each with its history carried over (ContactHistory);
+//  2. evaluate_contacts: each contact's force and torques from its geometry and history, in
+//     blocks of contacts held as columns (ContactTable), two vectorised loops per block;
+//  3. ContactSums: every grain sums its contacts in list order (the rows k < i that list it,
+//     then its own row), one fixed order whatever the thread count, so the same roundings and
+//     the same bits (with one thread it runs inside 2, block by block, in the same order;
+//     with several, as a short serial sweep after it);
+//  4. the simulator adds the plate's forces, then update_grains calls after_row(i, forced)
+//     with grain i's total force: `forced` flags say which grains had a force at this pass or
+//     the last (contacts, plate, tether); the others fly free. The two kinds are listed apart
+//     first, and each list is updated in its own loop.
+// Phases 1, 2 and 4 are shared among threads. docs/performance.md says why the loops look as
+// they do (plain LaneVec columns, no Eigen in them, selects instead of branches).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/dim.hpp"
+#include "core/neighbour_list.hpp"
+#include "core/particles.hpp"
+#include "soft_dem/contact_geometry.hpp"
+#include "soft_dem/contact_history.hpp"
+#include "soft_dem/contact_table.hpp"
+#include "soft_dem/integrators.hpp"
+#include "soft_dem/lane_vec.hpp"
+
+namespace granjet::dem {
+
+inline int thread_index() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// kMono: every grain has the radius of the first (no radius lookups); Space: how separations
+// are taken (core/space.hpp).
+template <int D, class Law, bool kMono, class Space>
+class ForcePass {
+ public:
+  using History = ContactHistory<D, Law::kNeedsHistory>;
+  using Table = ContactTable<D, Law::kNeedsRotation>;
+
+  // Where the contacts' forces go, per grain: raw pointers (see ContactSums). Bit 0 of forced
+  // is set for a grain that gets a force.
+  struct Sums {
+    Vec<D>* force;
+    Spin<D>* torque;
+    std::uint8_t* forced;
+  };
+
+  ForcePass(int threads, double overlap_limit) : threads_(threads), overlap_limit_(overlap_limit) {}
+
+  // The listed pairs in contact at the last evaluation and their history.
+  History& history() { return history_; }
+  const History& history() const { return history_; }
+
+  // Phase 1. Each thread tests a contiguous stretch of the list; the stretches are joined in
+  // order. The index of every pair is written and the count advances only for a contact: no
+  // branch. A non-finite separation counts as apart (the simulator's check reports it).
+  void find_contacts(const Particles<D>& p, const PairList& pairs,
+                     const std::vector<std::uint32_t>& pair_row, const Space& space) {
+    const std::size_t listed = pairs.size();
+    const Vec<D>* x = p.position().data();
+    const double* radius = p.radius().data();
+    const std::uint32_t* row = pair_row.data();
+    const std::uint32_t* partner = pairs.partner.data();
+    found_.resize(threads_);
+    std::vector<std::size_t> count(threads_, 0);
+#pragma omp parallel for num_threads(threads_) schedule(static, 1) if (threads_ > 1)
+    for (int t = 0; t < threads_; ++t) {
+      const std::size_t begin = listed * t / threads_, end = listed * (t + 1) / threads_;
+      std::vector<std::uint32_t>& out = found_[t];
+      if (out.size() < end - begin) out.resize(end - begin);
+      std::uint32_t* slot = out.data();
+      std::size_t touching = 0;
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint32_t i = row[k], j = partner[k];
+        const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
+        const double d2 = space.separation(x[i], x[j]).squaredNorm();
+        slot[touching] = static_cast<std::uint32_t>(k);
+        touching += d2 < reach * reach;
+      }
+      count[t] = touching;
+    }
+    found_pair_.clear();
+    for (int t = 0; t < threads_; ++t)
+      found_pair_.insert(found_pair_.end(), found_[t].begin(), found_[t].begin() + count[t]);
+    history_.carry_over(found_pair_);
+  }
+
+  // Phases 2 and 3: each contact's force and torques, added to its grains in `sums`. Returns
+  // the first contact (in list order) whose overlap is beyond the limit of the smaller radius,
+  // or the number of contacts if none.
+  [[gnu::flatten]]  // the contact law and geometry inlined into the loop
+  std::size_t
+  evaluate_contacts(const Law& law, const Particles<D>& p, const PairList& pairs,
+                    const std::vector<std::uint32_t>& pair_row, const Space& space,
+                    const Sums& target) {
+    const auto contacts = static_cast<std::int64_t>(history_.size());
+    contacts_.resize(contacts);
+    contact_i_.resize(contacts);
+    contact_j_.resize(contacts);
+    const std::uint32_t* pair = history_.pairs().data();
+    const std::uint32_t* row = pair_row.data();
+    const std::uint32_t* partner = pairs.partner.data();
+    std::int64_t* grain_i = contact_i_.data();
+    std::int64_t* grain_j = contact_j_.data();
+    const bool serial = threads_ == 1;
+    const ContactSums sums = contact_sums(target);
+    // Blocks of contacts small enough that their columns stay in the first-level cache from the
+    // geometry through the law to a single thread's sums.
+    constexpr std::int64_t kBlock = 32;
+    const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
+    bool any_too_deep = false;  // the first such contact is looked for only then
+#pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
+    {
+#pragma omp for schedule(static)
+      for (std::int64_t c = 0; c < contacts; ++c) {
+        grain_i[c] = row[pair[c]];
+        grain_j[c] = partner[pair[c]];
+      }
+#pragma omp for schedule(static)
+      for (std::int64_t block = 0; block < blocks; ++block) {
+        const std::int64_t begin = block * kBlock, end = std::min(contacts, begin + kBlock);
+        any_too_deep |= gather_contacts(p, space, begin, end);
+        contacts_.apply(law, history_.shear(), begin, end);
+        if (serial)  // in list order already: phase 3 done on the way
+          for (std::int64_t c = begin; c < end; ++c) sums.add(c);
+      }
+    }
+    if (!serial)
+      for (std::int64_t c = 0; c < contacts; ++c) sums.add(c);
+    if (any_too_deep)
+      for (std::int64_t c = 0; c < contacts; ++c) {
+        const double radius_i = radius_of(p.radius(), grain_i[c]);
+        const double radius_j = radius_of(p.radius(), grain_j[c]);
+        if (contacts_.overlap(c) > overlap_limit_ * std::min(radius_i, radius_j)) return c;
+      }
+    return contacts;
+  }
+
+  // Phase 4: after_row(i, forced) for every grain, forced = whether it had a force at this pass
+  // or the last (forced bits, or a tethered wall grain, which feels its springs); returns the
+  // largest value after_row returned. The two lists are built in index order without a branch:
+  // whether a grain in a jet touches another is as good as random, and one branch per grain on
+  // it mispredicts.
+  template <class AfterRow>
+  [[gnu::flatten]]  // the grain update inlined into its loops
+  double
+  update_grains(std::span<const std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
+                bool tethered_wall, AfterRow&& after_row) {
+    const auto n = static_cast<std::int64_t>(kinds.size());
+    const std::uint8_t* forced = forced_bits.data();
+    const GrainKind* kind = kinds.data();
+    const unsigned tethered = tethered_wall;
+    forced_grains_.resize(n);
+    coasting_grains_.resize(n);
+    std::int64_t forced_count = 0, coasting_count = 0;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const bool pushed = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+      forced_grains_[forced_count] = static_cast<std::uint32_t>(i);
+      coasting_grains_[coasting_count] = static_cast<std::uint32_t>(i);
+      forced_count += pushed;
+      coasting_count += !pushed;
+    }
+    const std::uint32_t* pushed = forced_grains_.data();
+    const std::uint32_t* coasting = coasting_grains_.data();
+    std::vector<double> thread_largest(threads_, 0.0);
+#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+    {
+      double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
+#pragma omp for schedule(static) nowait
+      for (std::int64_t k = 0; k < coasting_count; ++k)
+        largest = sticky_max(largest, after_row(coasting[k], false));
+#pragma omp for schedule(static) nowait
+      for (std::int64_t k = 0; k < forced_count; ++k)
+        largest = sticky_max(largest, after_row(pushed[k], true));
+      thread_largest[thread_index()] = largest;
+    }
+    double largest = 0.0;
+    for (double value : thread_largest) largest = sticky_max(largest, value);
+    return largest;
+  }
+
+ private:
+  static double radius_of(std::span<const double> radius, std::size_t i) {
+    if constexpr (kMono) return radius[0];
+    return radius[i];
+  }
+
+  // Geometry and relative velocity of contacts [begin, end) into contacts_; whether any
+  // overlaps beyond the limit. A plain loop inside the OpenMP loop over blocks: GCC vectorises
+  // gathers there, not in an OpenMP loop itself. The grains' vectors are read as plain doubles
+  // (see LaneVec::at).
+  bool gather_contacts(const Particles<D>& p, const Space& space, std::int64_t begin,
+                       std::int64_t end) {
+    constexpr int kSpinWidth = Table::kSpinWidth;
+    static_assert(sizeof(Vec<D>) == D * sizeof(double) &&
+                  sizeof(Spin<D>) == kSpinWidth * sizeof(double));
+    using Lane = LaneVec<D>;
+    const auto spin_at = [](const double* base, std::int64_t k) {
+      if constexpr (kSpinWidth == 1)
+        return base[k];  // 2D: a scalar
+      else
+        return LaneVec<kSpinWidth>::at(base, k);
+    };
+    const double* x = p.position().data()->data();
+    const double* v = p.velocity().data()->data();
+    const double* w = reinterpret_cast<const double*>(p.spin().data());
+    const double* radius = p.radius().data();
+    const std::int64_t* grain_i = contact_i_.data();
+    const std::int64_t* grain_j = contact_j_.data();
+    // An or as wide as a double, which the vectoriser keeps in lanes (a bool or a first index
+    // stops it).
+    std::int64_t too_deep = 0;
+#pragma GCC ivdep
+    for (std::int64_t c = begin; c < end; ++c) {
+      const std::int64_t i = grain_i[c], j = grain_j[c];
+      const Lane r_ij = space.separation(Lane::at(x, i), Lane::at(x, j));
+      const double radius_i = kMono ? radius[0] : radius[i];
+      const double radius_j = kMono ? radius[0] : radius[j];
+      const ContactGeometryOf<Lane> g =
+          contact_geometry(r_ij, std::sqrt(r_ij.squaredNorm()), radius_i, radius_j);
+      contacts_.set(c, g,
+                    dem::relative_velocity<Law::kNeedsRotation>(Lane::at(v, i), Lane::at(v, j),
+                                                                spin_at(w, i), spin_at(w, j), g));
+      too_deep |= std::int64_t{g.overlap > overlap_limit_ * std::min(radius_i, radius_j)};
+    }
+    return too_deep != 0;
+  }
+
+  // Adds contact c's force and torques to its two grains and flags them. Raw pointers: Eigen
+  // stores through may-alias vector types, after which a pointer read from a member would have
+  // to be read again.
+  struct ContactSums {
+    const std::int64_t* grain_i;
+    const std::int64_t* grain_j;
+    ColumnsView<D> contact_force;
+    ColumnsView<Table::kSpinWidth> contact_torque_i, contact_torque_j;
+    Vec<D>* force;
+    Spin<D>* torque;
+    std::uint8_t* forced;
+
+    void add(std::size_t c) const {
+      const std::int64_t i = grain_i[c], j = grain_j[c];
+      forced[i] |= 1;
+      forced[j] |= 1;
+      const Vec<D> f = contact_force.template get<Vec<D>>(c);
+      force[i] += f;
+      force[j] -= f;
+      if constexpr (Law::kNeedsRotation) {
+        torque[i] -= contact_torque_i.template get<Spin<D>>(c);
+        torque[j] -= contact_torque_j.template get<Spin<D>>(c);
+      }
+    }
+  };
+  ContactSums contact_sums(const Sums& target) const {
+    return {contact_i_.data(),     contact_j_.data(), contacts_.forces(), contacts_.torques_i(),
+            contacts_.torques_j(), target.force,      target.torque,      target.forced};
+  }
+
+  int threads_;
+  double overlap_limit_;
+  History history_;
+  Table contacts_;
+  std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
+  // find_contacts' scratch: each thread's stretch of the list, and their join.
+  std::vector<std::vector<std::uint32_t>> found_;
+  std::vector<std::uint32_t> found_pair_;
+  // update_grains' lists: the grains with a force at this pass or the last, the coasting ones.
+  std::vector<std::uint32_t> forced_grains_, coasting_grains_;
+};
+
+}  // namespace granjet::dem
