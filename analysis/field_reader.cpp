@@ -99,8 +99,7 @@ RunResult read_run_result(const std::filesystem::path& file) {
   const H5Context ctx(file, H5Context::Role::kInput);
   const H5Handle f = ctx.open_read_only();
   int seeds = 0;
-  ctx.check(H5Aread(ctx.own(H5Aopen_by_name(f.get(), "/fields", "seeds", H5P_DEFAULT,
-                                            H5P_DEFAULT),
+  ctx.check(H5Aread(ctx.own(H5Aopen_by_name(f.get(), "/fields", "seeds", H5P_DEFAULT, H5P_DEFAULT),
                             H5Aclose, "open", "/fields attribute seeds")
                         .get(),
                     H5T_NATIVE_INT, &seeds),
@@ -129,8 +128,8 @@ RunResult read_run_result(const std::filesystem::path& file) {
   }
   r.fields = read_table(f.get(), "/fields", bins, {}, ctx);
   r.global = read_table(f.get(), "/analysis/global", 1, {}, ctx);
-  r.vdf = read_table(f.get(), "/analysis/vdf", rows_of(f.get(), "/analysis/vdf/c", ctx), {"c"},
-                     ctx);
+  r.vdf =
+      read_table(f.get(), "/analysis/vdf", rows_of(f.get(), "/analysis/vdf/c", ctx), {"c"}, ctx);
   if (H5Lexists(f.get(), "/analysis/azimuth", H5P_DEFAULT) > 0)
     r.azimuth = read_table(f.get(), "/analysis/azimuth",
                            rows_of(f.get(), "/analysis/azimuth/phi", ctx), {"phi"}, ctx);

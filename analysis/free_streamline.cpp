@@ -56,8 +56,7 @@ double hodograph(double t, double psi0) {
 }
 
 double plate_half_width(double psi0) {
-  return over_plate(psi0, [](double t, double chi) { return 1.0 / (t * chi); }) /
-         std::numbers::pi;
+  return over_plate(psi0, [](double t, double chi) { return 1.0 / (t * chi); }) / std::numbers::pi;
 }
 
 double momentum_force(double psi0) { return 2.0 * (1.0 - std::cos(psi0)); }
@@ -76,9 +75,9 @@ double exit_angle(double plate_over_jet) {
   const auto residual = [&](double psi0) { return plate_half_width(psi0) - plate_over_jet; };
   double lo = 1e-6, hi = 0.5 * std::numbers::pi - 1e-9;
   if (residual(lo) >= 0.0 || residual(hi) <= 0.0)
-    throw std::invalid_argument("free-streamline plate half-width L/R = " +
-                                std::to_string(plate_over_jet) +
-                                " is outside what double precision resolves");
+    throw std::invalid_argument(
+        "free-streamline plate half-width L/R = " + std::to_string(plate_over_jet) +
+        " is outside what double precision resolves");
   std::uintmax_t iterations = 200;
   const auto [a, b] = boost::math::tools::toms748_solve(
       residual, lo, hi, boost::math::tools::eps_tolerance<double>(52), iterations);

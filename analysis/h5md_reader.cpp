@@ -47,8 +47,8 @@ class H5mdInput {
     // Both are required by granjet's layout; other H5MD writers lack the second.
     for (const char* group : {"/h5md", kParameters}) {
       if (H5Lexists(file_.get(), group, H5P_DEFAULT) <= 0) {
-        throw InputError(file.string(), std::string("is not a granjet H5MD file (no ") + group +
-                                 ")");
+        throw InputError(file.string(),
+                         std::string("is not a granjet H5MD file (no ") + group + ")");
       }
     }
   }
@@ -84,28 +84,28 @@ class H5mdInput {
     }
   }
 
-
   // Every dataset under /checkpoint, by its path below it.
   StateArchive checkpoint() const {
     struct Visit {
       const H5mdInput* in;
       std::vector<std::string> names;
     } visit{this, {}};
-    const H5Handle group =
-        ctx_.own(H5Gopen2(file_.get(), "/checkpoint", H5P_DEFAULT), H5Gclose, "open", "/checkpoint");
-    ctx_.check(H5Ovisit(group.get(), H5_INDEX_NAME, H5_ITER_INC,
-                        [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-                          if (info->type == H5O_TYPE_DATASET)
-                            static_cast<Visit*>(data)->names.push_back(name);
-                          return 0;
-                        },
-                        &visit),
+    const H5Handle group = ctx_.own(H5Gopen2(file_.get(), "/checkpoint", H5P_DEFAULT), H5Gclose,
+                                    "open", "/checkpoint");
+    ctx_.check(H5Ovisit(
+                   group.get(), H5_INDEX_NAME, H5_ITER_INC,
+                   [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+                     if (info->type == H5O_TYPE_DATASET)
+                       static_cast<Visit*>(data)->names.push_back(name);
+                     return 0;
+                   },
+                   &visit),
                "list", "/checkpoint");
     StateArchive archive;
     for (const std::string& name : visit.names) {
       const std::string path = "/checkpoint/" + name;
-      const H5Handle set = ctx_.own(H5Dopen2(file_.get(), path.c_str(), H5P_DEFAULT), H5Dclose,
-                                    "open", path);
+      const H5Handle set =
+          ctx_.own(H5Dopen2(file_.get(), path.c_str(), H5P_DEFAULT), H5Dclose, "open", path);
       const H5Handle type = ctx_.own(H5Dget_type(set.get()), H5Tclose, "query", path);
       const H5Handle space = ctx_.own(H5Dget_space(set.get()), H5Sclose, "query", path);
       const hssize_t n = H5Sget_simple_extent_npoints(space.get());
@@ -113,16 +113,16 @@ class H5mdInput {
       if (H5Tget_class(type.get()) == H5T_FLOAT) {
         std::vector<double> values(n);
         if (n > 0)
-          ctx_.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                             values.data()),
-                     "read", path);
+          ctx_.check(
+              H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+              "read", path);
         archive.put_reals(name, std::move(values));
       } else {
         std::vector<std::int64_t> values(n);
         if (n > 0)
-          ctx_.check(H5Dread(set.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                             values.data()),
-                     "read", path);
+          ctx_.check(
+              H5Dread(set.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+              "read", path);
         archive.put_integers(name, std::move(values));
       }
     }
@@ -243,8 +243,9 @@ FileSummary read_summary(const std::filesystem::path& file) {
 StateArchive read_checkpoint(const std::filesystem::path& file) {
   const H5mdInput in(file);
   if (!in.exists("/checkpoint"))
-    throw InputError(file.string(), "holds no checkpoint (a run older than its first "
-                                    "run.checkpoint_interval, or not a granjet run)");
+    throw InputError(file.string(),
+                     "holds no checkpoint (a run older than its first "
+                     "run.checkpoint_interval, or not a granjet run)");
   return in.checkpoint();
 }
 
@@ -265,7 +266,8 @@ void print_summary(const FileSummary& summary, std::ostream& out) {
     out << "requested scene: stored too (the backend adapted it: /parameters/granjet/"
            "requested_scene)\n";
   if (summary.checkpoint)
-    out << "checkpoint at t = " << summary.checkpoint_time << ": granjet resume continues from it\n";
+    out << "checkpoint at t = " << summary.checkpoint_time
+        << ": granjet resume continues from it\n";
   if (!summary.members.empty()) {
     out << "ensemble of " << summary.members.size() << " runs (/fields and /analysis combined):";
     for (const std::string& member : summary.members) out << ' ' << member;
@@ -281,11 +283,13 @@ void validate_frame(const Frame<D>& frame, const std::filesystem::path& file, st
   };
   if (!std::isfinite(frame.time)) throw bad("its time is not finite");
   for (std::size_t k = 0; k < frame.id.size(); ++k) {
-    const std::string row = "row " + std::to_string(k) + " (grain id " + std::to_string(frame.id[k]) + ")";
+    const std::string row =
+        "row " + std::to_string(k) + " (grain id " + std::to_string(frame.id[k]) + ")";
     if (!frame.position[k].allFinite() || !frame.velocity[k].allFinite())
       throw bad(row + ": a position or velocity that is not finite");
     if (!(std::isfinite(frame.radius[k]) && frame.radius[k] > 0.0))
-      throw bad(row + ": radius " + std::to_string(frame.radius[k]) + " is not positive and finite");
+      throw bad(row + ": radius " + std::to_string(frame.radius[k]) +
+                " is not positive and finite");
   }
 }
 
@@ -297,8 +301,8 @@ Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
   int dimension = 0;
   in.read_ints(kParameters, "dimension", std::span(&dimension, 1));
   if (dimension != D) {
-    throw InputError(file.string(), "holds " + std::to_string(dimension) +
-                             "D grains, not " + std::to_string(D) + "D");
+    throw InputError(file.string(), "holds " + std::to_string(dimension) + "D grains, not " +
+                                        std::to_string(D) + "D");
   }
   const hsize_t frames = in.extent(kFrameStep, 1)[0];
   if (index >= frames) {
@@ -322,13 +326,12 @@ Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
   const bool row_per_id = in.exists(kPresent);
   for (hsize_t r = 0; r < rows; ++r) {
     if (id[r] == -1) continue;
-    if (row_per_id ? id[r] != static_cast<GrainId>(r)
-                   : id[r] < 0 || (r > 0 && id[r] <= id[r - 1]))
-      throw InputError(file.string(), "frame " + std::to_string(index) + ": row " +
-                                          std::to_string(r) + " holds grain id " +
-                                          std::to_string(id[r]) +
-                                          (row_per_id ? " (granjet stores grain r in row r, or -1)"
-                                                      : " (ids must increase)"));
+    if (row_per_id ? id[r] != static_cast<GrainId>(r) : id[r] < 0 || (r > 0 && id[r] <= id[r - 1]))
+      throw InputError(
+          file.string(),
+          "frame " + std::to_string(index) + ": row " + std::to_string(r) + " holds grain id " +
+              std::to_string(id[r]) +
+              (row_per_id ? " (granjet stores grain r in row r, or -1)" : " (ids must increase)"));
     frame.id.push_back(id[r]);
     frame.position.push_back(position[r]);
     frame.velocity.push_back(velocity[r]);

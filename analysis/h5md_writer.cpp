@@ -48,14 +48,14 @@ class H5mdFile {
   // One frame: every grain in the row of its id (fill values in the rows of removed grains),
   // the rows present, and the touching pairs.
   struct FrameRows {
-    std::vector<GrainId> id;        // [rows]
-    std::vector<GrainId> present;   // ascending
-    std::vector<double> position;   // row-major [rows][dimension]
+    std::vector<GrainId> id;       // [rows]
+    std::vector<GrainId> present;  // ascending
+    std::vector<double> position;  // row-major [rows][dimension]
     std::vector<double> velocity;
     std::vector<double> radius;
-    std::vector<double> omega;      // [rows][spin width], when stored
-    std::vector<double> force;      // [rows][dimension], when stored
-    std::vector<GrainId> pairs;     // [contacts][2], when stored
+    std::vector<double> omega;                           // [rows][spin width], when stored
+    std::vector<double> force;                           // [rows][dimension], when stored
+    std::vector<GrainId> pairs;                          // [contacts][2], when stored
     std::vector<double> normal_force, tangential_force;  // [contacts][dimension]
     std::vector<double> overlap;                         // [contacts]
   };
@@ -168,8 +168,9 @@ void H5mdFile::write_unit(const std::string& dataset, const char* quantity) cons
 }
 
 std::vector<H5mdFile::Dataset*> H5mdFile::Datasets::per_frame() {
-  std::vector<Dataset*> sets = {&frame_step, &frame_time, &frame_grains, &frame_contacts, &dt,
-                                &position,   &velocity,   &radius,       &id,             &present};
+  std::vector<Dataset*> sets = {&frame_step, &frame_time, &frame_grains, &frame_contacts,
+                                &dt,         &position,   &velocity,     &radius,
+                                &id,         &present};
   for (std::optional<Dataset>* set :
        {&omega, &force, &box, &pairs, &normal_force, &tangential_force, &overlap})
     if (set->has_value()) sets.push_back(&**set);
@@ -239,7 +240,8 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   std::vector<std::string> per_frame = {all + "velocity", all + "radius", all + "id",
                                         all + "present"};
   if (meta.omega) {
-    const std::vector<hsize_t> shape = dimension_ == 3 ? std::vector<hsize_t>{g, 3} : std::vector<hsize_t>{g};
+    const std::vector<hsize_t> shape =
+        dimension_ == 3 ? std::vector<hsize_t>{g, 3} : std::vector<hsize_t>{g};
     sets_.omega = create_series(all + "omega/value", H5T_NATIVE_DOUBLE, shape, &nan);
     per_frame.push_back(all + "omega");
   }
@@ -262,7 +264,8 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   if (meta.contacts) {
     // Pairs of ids of /particles/all (H5MD 1.1 tuples list); the width grows with the most
     // contacts any frame has.
-    sets_.pairs = create_series("/connectivity/contacts/value", H5T_NATIVE_INT64, {0, 2}, &no_grain);
+    sets_.pairs =
+        create_series("/connectivity/contacts/value", H5T_NATIVE_INT64, {0, 2}, &no_grain);
     hobj_ref_t group{};
     ctx_.check(H5Rcreate(&group, file_.get(), "/particles/all", H5R_OBJECT, -1), "reference",
                "/particles/all");
@@ -326,8 +329,8 @@ void H5mdFile::write_string_dataset(const char* name, const std::string& value) 
   const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), name, type.get(), dataspace({}).get(),
                                            link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
                                 H5Dclose, "create", name);
-  ctx_.check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()),
-             "write", name);
+  ctx_.check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()), "write",
+             name);
 }
 
 H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
@@ -389,8 +392,8 @@ H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
     for (int k = 0; k < dimension_; ++k) box_.push_back(edges[k * (dimension_ + 1)]);
   }
   for (hsize_t k = 0; k < frames; ++k)
-    frames_.push_back({time[k], static_cast<std::size_t>(grains[k]),
-                       static_cast<std::size_t>(contacts[k])});
+    frames_.push_back(
+        {time[k], static_cast<std::size_t>(grains[k]), static_cast<std::size_t>(contacts[k])});
   write_string_attribute("/parameters/granjet", "status", "running");
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
 }
@@ -454,11 +457,12 @@ void H5mdFile::write_checkpoint(StateArchive archive) {
     ctx_.check(H5Ldelete(file_.get(), fresh.c_str(), H5P_DEFAULT), "replace", fresh);
   const auto store = [&](const std::string& name, hid_t type, std::size_t n, const void* data) {
     const std::string path = fresh + "/" + name;
-    const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), path.c_str(), type,
-                                             dataspace({static_cast<hsize_t>(n)}).get(),
-                                             link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
-                                  H5Dclose, "create", path);
-    if (n > 0) ctx_.check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write", path);
+    const H5Handle set = ctx_.own(
+        H5Dcreate2(file_.get(), path.c_str(), type, dataspace({static_cast<hsize_t>(n)}).get(),
+                   link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Dclose, "create", path);
+    if (n > 0)
+      ctx_.check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write", path);
   };
   for (const auto& [name, values] : archive.all_reals())
     store(name, H5T_NATIVE_DOUBLE, values.size(), values.data());
@@ -466,9 +470,9 @@ void H5mdFile::write_checkpoint(StateArchive archive) {
     store(name, H5T_NATIVE_INT64, values.size(), values.data());
   if (H5Lexists(file_.get(), "/checkpoint", H5P_DEFAULT) > 0)
     ctx_.check(H5Ldelete(file_.get(), "/checkpoint", H5P_DEFAULT), "replace", "/checkpoint");
-  ctx_.check(H5Lmove(file_.get(), fresh.c_str(), file_.get(), "/checkpoint", H5P_DEFAULT,
-                     H5P_DEFAULT),
-             "rename", fresh);
+  ctx_.check(
+      H5Lmove(file_.get(), fresh.c_str(), file_.get(), "/checkpoint", H5P_DEFAULT, H5P_DEFAULT),
+      "rename", fresh);
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
 }
 
@@ -496,8 +500,8 @@ void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows
     append(*sets_.box, dimension_, H5T_NATIVE_DOUBLE, edges.data());
   }
   if (sets_.pairs) {
-    for (Dataset* set : {&*sets_.pairs, &*sets_.normal_force, &*sets_.tangential_force,
-                         &*sets_.overlap})
+    for (Dataset* set :
+         {&*sets_.pairs, &*sets_.normal_force, &*sets_.tangential_force, &*sets_.overlap})
       widen(*set, contacts);
     append(*sets_.pairs, contacts, H5T_NATIVE_INT64, rows.pairs.data());
     append(*sets_.normal_force, contacts, H5T_NATIVE_DOUBLE, rows.normal_force.data());

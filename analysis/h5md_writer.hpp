@@ -6,7 +6,8 @@
 // means the same grain in every frame; a grain removed during the run keeps its row with the
 // fill values (id -1, H5MD's mark of a particle that does not exist; NaN elsewhere):
 //
-//   /particles/all/{position,velocity}/value [frames][rows][D], radius/value, id/value [frames][rows]
+//   /particles/all/{position,velocity}/value [frames][rows][D], radius/value, id/value
+//   [frames][rows]
 //                  present/value [frames][rows]   the rows present, ascending, then -1
 //                  (omega/value [frames][rows](x3 in 3D), force/value [frames][rows][D])
 //                  box  dimension, boundary; with a periodic box edges/value [frames][D][D]
@@ -40,7 +41,7 @@ struct RunMetadata {
   // The scene as requested, where the backend adapted it (/parameters/granjet/requested_scene;
   // empty: none).
   std::string requested_scene_ini;
-  int dimension = 3;            // must match the writer's D
+  int dimension = 3;  // must match the writer's D
   // What each frame stores beyond position, velocity, radius and id (OutputSpec), and the
   // unit attributes.
   bool omega = false;

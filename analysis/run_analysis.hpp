@@ -38,14 +38,14 @@ struct AnalysisConfig {
   double sample_interval = 0.5;
   BinSpec bins;
   FieldOptions options;
-  double scatter_radius = 16.5;    // grains beyond this distance from the jet axis are scattered
+  double scatter_radius = 16.5;  // grains beyond this distance from the jet axis are scattered
   // phi = 0 of the azimuthal distribution (3D): towards the middle of a rectangular jet's short
   // side, e_x (for_scene).
   double reference_azimuth = 0.0;
   // The exit angle of an ideal fluid jet on the same plate (spec §7b), for 2D plate targets;
   // NaN otherwise.
   double free_streamline_psi0 = std::numeric_limits<double>::quiet_NaN();
-  int vdf_bins = 48;               // histogram of scaled velocities over [-vdf_range, vdf_range]
+  int vdf_bins = 48;  // histogram of scaled velocities over [-vdf_range, vdf_range]
   double vdf_range = 6.0;
   int azimuth_bins = 36;
 

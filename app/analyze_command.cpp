@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -90,8 +90,7 @@ analysis::EnsembleResult store_into_copy(const std::filesystem::path& file,
 // A run's file: its own frames. An ensemble's file (no frames): each member run's frames,
 // combined over the seeds as `granjet run --seeds` does; the members are left as they are.
 template <int D>
-int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
-            std::ostream& out) {
+int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored, std::ostream& out) {
   std::vector<std::filesystem::path> files{options.file};
   if (!stored.members.empty()) {
     files.clear();
@@ -109,8 +108,7 @@ int analyze(const AnalyzeOptions& options, const analysis::FileSummary& stored,
   out << "analysed " << frames << " frames of " << runs.size() << " run(s); wrote /fields and "
       << "/analysis into " << options.file.string() << " and "
       << analysis::fields_sidecar(options.file).string() << "\n";
-  if (!options.summary.empty())
-    write_json_atomically(options.summary, analysis::to_json(result));
+  if (!options.summary.empty()) write_json_atomically(options.summary, analysis::to_json(result));
   return 0;
 }
 
@@ -120,7 +118,8 @@ int analyze_command(const AnalyzeOptions& options, std::ostream& out) {
   const analysis::FileSummary stored = analysis::read_summary(options.file);
   if (options.window && !(options.window->second > options.window->first))
     throw InputError("--window", "expected t0:t1 with t1 > t0");
-  return stored.dimension == 2 ? analyze<2>(options, stored, out) : analyze<3>(options, stored, out);
+  return stored.dimension == 2 ? analyze<2>(options, stored, out)
+                               : analyze<3>(options, stored, out);
 }
 
 }  // namespace granjet

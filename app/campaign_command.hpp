@@ -16,7 +16,7 @@ struct CampaignOptions {
   bool quick = false;
   bool dry_run = false;
   bool quiet = false;
-  std::vector<std::string> only;  // result ids
+  std::vector<std::string> only;          // result ids
   std::vector<std::string> command_line;  // recorded in the manifest
 };
 

@@ -58,7 +58,8 @@ std::vector<std::string> section_names(const std::string& text, const std::strin
       throw InputError(source + ":" + std::to_string(number),
                        "'" + line + "' is not a section [name] of letters, digits, _ and -");
     for (const std::string& seen : names)
-      if (seen == name) throw InputError("[" + name + "]", "the section appears twice in " + source);
+      if (seen == name)
+        throw InputError("[" + name + "]", "the section appears twice in " + source);
     names.push_back(name);
   }
   return names;
@@ -142,8 +143,9 @@ CampaignFile parse_campaign(std::istream& in, const std::filesystem::path& sourc
     if (key == "name")
       c.name = value;
     else if (!set_shared(defaults, c.description, key, value, where))
-      throw InputError(where, "unknown key; [campaign] allows name, description, seeds, backend, "
-                              "quick_fraction");
+      throw InputError(where,
+                       "unknown key; [campaign] allows name, description, seeds, backend, "
+                       "quick_fraction");
   }
 
   for (const std::string& name : sections) {
@@ -162,8 +164,9 @@ CampaignFile parse_campaign(std::istream& in, const std::filesystem::path& sourc
       else if (key.find('.') != std::string::npos)
         g.keys.push_back({key, split_list(value, where)});  // checked against the scene's keys
       else
-        throw InputError(where, "unknown key; a group allows scene, results, seeds, backend, "
-                                "description, quick_fraction and scene keys section.key");
+        throw InputError(where,
+                         "unknown key; a group allows scene, results, seeds, backend, "
+                         "description, quick_fraction and scene keys section.key");
     }
     if (g.scene.empty()) throw InputError("[" + name + "] scene", "missing: which scene file?");
     if (g.results.empty())

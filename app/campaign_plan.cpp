@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
-#include <utility>
 #include <sstream>
+#include <utility>
 
 #include "app/backend_factory.hpp"
 #include "app/run_budget.hpp"
@@ -116,8 +116,8 @@ void check_only(const CampaignFile& campaign, const std::vector<std::string>& on
     if (std::find(known.begin(), known.end(), id) == known.end()) {
       std::string list;
       for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw InputError("--only", "'" + id + "' is served by no group of " +
-                                     campaign.file.string() + "; its results: " + list);
+      throw InputError("--only", "'" + id + "' is served by no group of " + campaign.file.string() +
+                                     "; its results: " + list);
     }
 }
 

@@ -22,25 +22,25 @@ namespace granjet {
 
 struct PlanOptions {
   std::filesystem::path out_dir;
-  bool quick = false;                // one seed, run.t_end and the analysis window shortened
-  std::vector<std::string> only;     // result ids; empty: every group
+  bool quick = false;             // one seed, run.t_end and the analysis window shortened
+  std::vector<std::string> only;  // result ids; empty: every group
 };
 
 // What a run costs, estimated before it runs.
 struct RunCost {
-  std::int64_t grains = 0;          // at the start
-  std::int64_t steps = 0;           // soft DEM time steps; 0 for the event-driven backend
-  double particle_steps = 0.0;      // soft DEM: steps x the grains present on average (jet
-                                    // grains are removed once they have flowed out)
-  double grain_time = 0.0;          // event-driven: the same grains x simulated time
-  double seconds = 0.0;             // on one core, from the rates below
+  std::int64_t grains = 0;      // at the start
+  std::int64_t steps = 0;       // soft DEM time steps; 0 for the event-driven backend
+  double particle_steps = 0.0;  // soft DEM: steps x the grains present on average (jet
+                                // grains are removed once they have flowed out)
+  double grain_time = 0.0;      // event-driven: the same grains x simulated time
+  double seconds = 0.0;         // on one core, from the rates below
 };
 
 struct PlannedRun {
   std::size_t group = 0;  // index into CampaignFile::groups
   std::string point;
   std::uint64_t seed = 0;
-  std::string name;       // "<group>/<point>.seed<N>": stable, unique, a path under DIR
+  std::string name;  // "<group>/<point>.seed<N>": stable, unique, a path under DIR
   std::string backend;
   std::vector<std::string> overrides;    // as --set, in the order applied to the group's scene
   Scene scene;                           // resolved, as the backend runs it (check_backend)
@@ -56,10 +56,10 @@ struct PlannedRun {
 struct PlannedEnsemble {
   std::size_t group = 0;
   std::string point;
-  std::string name;                 // "<group>/<point>"
-  std::vector<std::size_t> runs;    // indices into CampaignPlan::runs, by seed
-  std::filesystem::path base;       // DIR/<group>/<point>
-  bool analysed = false;            // jet scenes with analysis.enabled: their seeds are combined
+  std::string name;               // "<group>/<point>"
+  std::vector<std::size_t> runs;  // indices into CampaignPlan::runs, by seed
+  std::filesystem::path base;     // DIR/<group>/<point>
+  bool analysed = false;          // jet scenes with analysis.enabled: their seeds are combined
 
   std::filesystem::path file(const char* extension) const { return base.string() + extension; }
 };

@@ -55,10 +55,14 @@ double makespan(const CampaignPlan& plan, int slots) {
 
 const char* state_name(RunState state) {
   switch (state) {
-    case RunState::kMissing: return "missing";
-    case RunState::kComplete: return "complete";
-    case RunState::kBlownUp: return "blown_up";
-    case RunState::kFailed: return "failed";
+    case RunState::kMissing:
+      return "missing";
+    case RunState::kComplete:
+      return "complete";
+    case RunState::kBlownUp:
+      return "blown_up";
+    case RunState::kFailed:
+      return "failed";
   }
   return "?";
 }
@@ -106,12 +110,11 @@ void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int j
       if (planned) groups += (groups.empty() ? "" : ",") + group.name;
     }
     if (sum.runs > 0)
-      out << printf_string("%-12s %-48s ", id.c_str(), groups.c_str()) << cost_columns(sum)
-          << "\n";
+      out << printf_string("%-12s %-48s ", id.c_str(), groups.c_str()) << cost_columns(sum) << "\n";
   }
   out << printf_string("%-12s %-48s ", "total", "") << cost_columns(total) << "\n\n"
-      << "campaign " << campaign.name << " (" << campaign.file.string() << "): "
-      << plan.runs.size() << " runs in " << plan.ensembles.size() << " ensembles; about "
+      << "campaign " << campaign.name << " (" << campaign.file.string() << "): " << plan.runs.size()
+      << " runs in " << plan.ensembles.size() << " ensembles; about "
       << format_duration(total.seconds) << " of CPU time, " << format_duration(makespan(plan, jobs))
       << " of wall time on " << jobs << " parallel slot(s)\n"
       << printf_string(
@@ -121,12 +124,11 @@ void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int j
              kEventDrivenGrainTimePerSecond);
 }
 
-void print_outcome_table(const CampaignPlan& plan,
-                         const std::vector<RunOutcome>& outcomes, double wall_seconds,
-                         std::ostream& out) {
+void print_outcome_table(const CampaignPlan& plan, const std::vector<RunOutcome>& outcomes,
+                         double wall_seconds, std::ostream& out) {
   out << "\n"
-      << printf_string("%-50s %8s %8s %8s %7s %10s\n", "ensemble", "complete", "blown_up",
-                       "failed", "reused", "run s");
+      << printf_string("%-50s %8s %8s %8s %7s %10s\n", "ensemble", "complete", "blown_up", "failed",
+                       "reused", "run s");
   std::size_t complete = 0, blown_up = 0, failed = 0, reused = 0;
   double run_seconds = 0.0;
   for (const PlannedEnsemble& e : plan.ensembles) {
@@ -150,9 +152,8 @@ void print_outcome_table(const CampaignPlan& plan,
   }
   out << printf_string("%-50s %4zu/%-3zu %8zu %8zu %7zu %10.1f\n", "total", complete,
                        plan.runs.size(), blown_up, failed, reused, run_seconds)
-      << "wall time " << format_duration(wall_seconds) << " for "
-      << plan.runs.size() - reused << " runs executed (" << reused
-      << " found complete and reused)\n";
+      << "wall time " << format_duration(wall_seconds) << " for " << plan.runs.size() - reused
+      << " runs executed (" << reused << " found complete and reused)\n";
 }
 
 }  // namespace granjet

@@ -26,9 +26,8 @@ struct RunOutcome {
 void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int jobs,
                    std::ostream& out);
 
-void print_outcome_table(const CampaignPlan& plan,
-                         const std::vector<RunOutcome>& outcomes, double wall_seconds,
-                         std::ostream& out);
+void print_outcome_table(const CampaignPlan& plan, const std::vector<RunOutcome>& outcomes,
+                         double wall_seconds, std::ostream& out);
 
 // 3725 s -> "1h02m", 75 s -> "1m15s".
 std::string format_duration(double seconds);

@@ -221,9 +221,8 @@ class Coordinator {
   void print_progress(std::size_t r, int rank, int code) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double eta = done_seconds_ > 0.0
-                           ? elapsed * (to_do_seconds_ - done_seconds_) / done_seconds_
-                           : 0.0;
+    const double eta =
+        done_seconds_ > 0.0 ? elapsed * (to_do_seconds_ - done_seconds_) / done_seconds_ : 0.0;
     char line[64];
     std::snprintf(line, sizeof line, "[%zu/%zu] ", executed_, plan_.runs.size() - found_);
     out_ << line << plan_.runs[r].name << "  " << state_name(outcomes_[r].state);
@@ -256,8 +255,9 @@ class Coordinator {
       if (outcomes_[r].state == RunState::kComplete)
         members.push_back({plan_.runs[r].seed, plan_.runs[r].file(".h5")});
     const PlannedRun& first = plan_.runs[ens.runs.front()];
-    const nlohmann::json header = {
-        {"scene", first.scene.name}, {"backend", first.backend}, {"dimension", first.scene.dimension}};
+    const nlohmann::json header = {{"scene", first.scene.name},
+                                   {"backend", first.backend},
+                                   {"dimension", first.scene.dimension}};
     const int combined =
         merge_ensemble(ens.file(".h5"), ens.file(".json"), header, members, first.scene.dimension);
     if (combined == 0) std::filesystem::remove(ens.file(".json"));
@@ -338,10 +338,10 @@ ChildProcess start_run(const PlannedRun& run) {
   std::ofstream(run.file(".log"), std::ios::trunc);
   // The child's stdout and stderr are its log: its own would be the same rows (the resolved
   // scene and the summary are the .ini and the .json).
-  return ChildProcess({"run", run.file(".ini").string(), "--backend", run.backend, "--out",
-                       run.file(".h5").string(), "--summary", run.file(".json").string(),
-                       "--no-log"},
-                      run.file(".log"));
+  return ChildProcess(
+      {"run", run.file(".ini").string(), "--backend", run.backend, "--out",
+       run.file(".h5").string(), "--summary", run.file(".json").string(), "--no-log"},
+      run.file(".log"));
 }
 
 int coordinate_campaign(const CampaignFile& campaign, const CampaignPlan& plan, MpiWorld& world,

@@ -16,8 +16,7 @@ extern char** environ;
 
 namespace granjet {
 
-ChildProcess::ChildProcess(const std::vector<std::string>& args,
-                           const std::filesystem::path& log)
+ChildProcess::ChildProcess(const std::vector<std::string>& args, const std::filesystem::path& log)
     : start_(std::chrono::steady_clock::now()) {
   // The running binary itself, even if a rebuild has replaced the file since it started: every
   // run of a campaign is made by the same code.

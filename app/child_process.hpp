@@ -15,8 +15,8 @@ namespace granjet {
 
 class ChildProcess {
  public:
-  // Starts this very binary (/proc/self/exe) with `args`, stdin from /dev/null and stdout and stderr
-  // appended to `log`. Throws std::runtime_error naming the log or the program on failure.
+  // Starts this very binary (/proc/self/exe) with `args`, stdin from /dev/null and stdout and
+  // stderr appended to `log`. Throws std::runtime_error naming the log or the program on failure.
   ChildProcess(const std::vector<std::string>& args, const std::filesystem::path& log);
   ChildProcess(ChildProcess&& other) noexcept;
   ChildProcess& operator=(ChildProcess&&) = delete;

@@ -16,10 +16,15 @@ namespace {
 
 // The rows of the side-by-side table: summary keys (a/b for nested ones) in this order, then
 // every measured quantity either backend reports.
-const std::vector<std::string> kRows = {
-    "status",         "grains",          "removed",
-    "wall_seconds",   "particle_steps_per_second", "collisions_per_second",
-    "energy/kinetic", "energy/dissipated",         "energy/removed"};
+const std::vector<std::string> kRows = {"status",
+                                        "grains",
+                                        "removed",
+                                        "wall_seconds",
+                                        "particle_steps_per_second",
+                                        "collisions_per_second",
+                                        "energy/kinetic",
+                                        "energy/dissipated",
+                                        "energy/removed"};
 
 const nlohmann::json* find(const nlohmann::json& summary, const std::string& row) {
   const nlohmann::json* node = &summary;

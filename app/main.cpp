@@ -1,7 +1,8 @@
-// The granjet command: run | compare | campaign | info | analyze | --help | --version. Exit codes: 0 done, 1 failure
-// (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as .partial).
-#include <boost/program_options.hpp>
+// The granjet command: run | compare | campaign | info | analyze | --help | --version. Exit codes:
+// 0 done, 1 failure (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as
+// .partial).
 #include <algorithm>
+#include <boost/program_options.hpp>
 #include <iostream>
 #include <sstream>
 
@@ -185,9 +186,8 @@ int campaign(const std::vector<std::string>& args, const std::vector<std::string
   granjet::CampaignOptions o;
   std::string only;
   po::options_description desc;
-  desc.add_options()("file", po::value<std::string>()->required())(
-      "out", po::value<std::string>())("jobs", po::value(&o.jobs))(
-      "quick", po::bool_switch(&o.quick))("only", po::value(&only))(
+  desc.add_options()("file", po::value<std::string>()->required())("out", po::value<std::string>())(
+      "jobs", po::value(&o.jobs))("quick", po::bool_switch(&o.quick))("only", po::value(&only))(
       "dry-run", po::bool_switch(&o.dry_run))("quiet", po::bool_switch(&o.quiet));
   const po::variables_map vm = parse(args, desc, "file");
   o.file = vm["file"].as<std::string>();
@@ -234,8 +234,8 @@ int main(int argc, char** argv) {
       std::cout << "granjet " << granjet::kVersion << " (commit " << granjet::kCommit << ")\n";
       return 0;
     }
-    const std::vector<std::string> commands = {"run", "resume", "compare", "info", "campaign",
-                                               "analyze"};
+    const std::vector<std::string> commands = {"run",  "resume",   "compare",
+                                               "info", "campaign", "analyze"};
     if (std::find(commands.begin(), commands.end(), command) != commands.end() &&
         asks_for_help(args)) {
       print_command_help(command);

@@ -35,8 +35,8 @@ std::vector<OutputPath> run_outputs(const fs::path& out, const fs::path& summary
       {"--out", with_extension(out, ".log"), whose + " log"}};
   if (!summary.empty()) {
     files.push_back({"--summary", summary, whose + " summary"});
-    files.push_back({"--summary", with_suffix(summary, ".partial"),
-                     whose + " summary while it is written"});
+    files.push_back(
+        {"--summary", with_suffix(summary, ".partial"), whose + " summary while it is written"});
   }
   return files;
 }
@@ -50,15 +50,15 @@ void check_outputs(const fs::path& input, const std::vector<OutputPath>& outputs
     std::error_code ec;
     const fs::file_status status = fs::symlink_status(o.path, ec);
     if (fs::exists(status) && !fs::is_regular_file(fs::status(o.path, ec)))
-      throw InputError(o.option, "'" + o.path.string() +
-                                     "' exists and is not a regular file; name a new file");
+      throw InputError(
+          o.option, "'" + o.path.string() + "' exists and is not a regular file; name a new file");
     const fs::path parent = o.path.parent_path().empty() ? fs::path(".") : o.path.parent_path();
     if (!fs::is_directory(parent, ec))
       throw InputError(o.option, "'" + o.path.string() + "': no directory " + parent.string());
     for (std::size_t j = 0; j < k; ++j)
       if (same_file(o.path, outputs[j].path))
-        throw InputError(o.option, "'" + o.path.string() + "' would be both " + o.role +
-                                       " and " + outputs[j].role + " (" + outputs[j].option + ")");
+        throw InputError(o.option, "'" + o.path.string() + "' would be both " + o.role + " and " +
+                                       outputs[j].role + " (" + outputs[j].option + ")");
   }
 }
 

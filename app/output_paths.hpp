@@ -12,7 +12,7 @@ namespace granjet {
 struct OutputPath {
   std::string option;  // what sets it, for the message: "--out", "--summary"
   std::filesystem::path path;
-  std::string role;    // "the run file", "its XDMF sidecar", ...
+  std::string role;  // "the run file", "its XDMF sidecar", ...
 };
 
 // The files `granjet run` writes for one run: OUT, OUT.partial, OUT's sidecars and log (option

@@ -37,8 +37,9 @@ void ProgressTable::row(double time, std::int64_t grains, const SimStats& stats,
   const std::int64_t count = event_driven_ ? stats.collisions : stats.contacts;
   const std::int64_t step = event_driven_ ? stats.events : stats.steps;
   char line[200];
-  std::snprintf(line, sizeof line, "%10.3f %6.1f%% %11lld %8lld %11lld %11.5g %11.5g %13.4g %9.1f\n",
-                time, 100.0 * done, static_cast<long long>(step), static_cast<long long>(grains),
+  std::snprintf(line, sizeof line,
+                "%10.3f %6.1f%% %11lld %8lld %11lld %11.5g %11.5g %13.4g %9.1f\n", time,
+                100.0 * done, static_cast<long long>(step), static_cast<long long>(grains),
                 static_cast<long long>(count), energy.kinetic + energy.rotational,
                 energy.dissipated, rate, eta);
   out_ << line << std::flush;

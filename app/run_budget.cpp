@@ -39,8 +39,8 @@ void refuse_above(double value, double limit, const std::string& key, const std:
                   const std::string& unit = "") {
   // !(<=) also refuses NaN and infinity.
   if (!(value <= limit))
-    throw InputError(key, what + " would be " + number(value) + unit + "; at most " +
-                              number(limit) + unit);
+    throw InputError(
+        key, what + " would be " + number(value) + unit + "; at most " + number(limit) + unit);
 }
 
 double wall_grains(const Scene& s) {
@@ -72,10 +72,12 @@ void check_extent(const Scene& s) {
   switch (s.kind) {
     case SceneKind::kJet:
       refuse_above(static_cast<double>(s.jet.grains) / s.jet.phi_tilde, kMaxJetSites,
-                   "jet.phi_tilde", "the lattice sites drawn for the jet (jet.grains / jet.phi_tilde)");
+                   "jet.phi_tilde",
+                   "the lattice sites drawn for the jet (jet.grains / jet.phi_tilde)");
       refuse_above(jet_length(s), kMaxExtent, "jet.spacing",
                    "the jet's length (jet.grains / jet.phi_tilde sites of jet.spacing across "
-                   "jet.diameter)", d);
+                   "jet.diameter)",
+                   d);
       refuse_above(s.jet.gap, kMaxExtent, "jet.gap", "the gap", d);
       refuse_above(s.wall.diameter, kMaxExtent, "wall.diameter", "the target's diameter", d);
       break;
@@ -84,8 +86,8 @@ void check_extent(const Scene& s) {
       break;
     case SceneKind::kGas:
     case SceneKind::kHcs:
-      refuse_above(gas_box_edge(s), kMaxExtent, "gas.phi",
-                   "the box edge (gas.grains at gas.phi)", d);
+      refuse_above(gas_box_edge(s), kMaxExtent, "gas.phi", "the box edge (gas.grains at gas.phi)",
+                   d);
       break;
   }
 }
@@ -94,9 +96,9 @@ void check_memory(const Scene& s, double memory_bytes) {
   const double grains = estimated_grains(s);
   const double bytes = kBaseBytes + kBytesPerGrain * grains;
   if (bytes <= memory_bytes) return;
-  const std::string key = s.periodic() ? "gas.grains"
+  const std::string key = s.periodic()                                         ? "gas.grains"
                           : wall_grains(s) > static_cast<double>(s.jet.grains) ? "wall.diameter"
-                                                                             : "jet.grains";
+                                                                               : "jet.grains";
   throw InputError(key, number(grains) + " grains would need about " + number(bytes / 1e9) +
                             " GB; this machine has " + number(memory_bytes / 1e9) + " GB");
 }
@@ -138,8 +140,8 @@ void check_duration(const Scene& s, const std::string& backend) {
     const double z = s.dimension == 3 ? analysis::kinetic::carnahan_starling(s.gas.phi)
                                       : analysis::kinetic::henderson(s.gas.phi);
     const double phi_chi = (z - 1.0) / (s.dimension == 3 ? 4.0 : 2.0);
-    const double per_grain = (s.dimension == 3 ? 24.0 : 8.0) * phi_chi *
-                             std::sqrt(s.gas.temperature / std::numbers::pi);
+    const double per_grain =
+        (s.dimension == 3 ? 24.0 : 8.0) * phi_chi * std::sqrt(s.gas.temperature / std::numbers::pi);
     refuse_above(0.5 * static_cast<double>(s.gas.grains) * per_grain * t_end, kMaxCollisions,
                  "gas.temperature",
                  "the collisions of gas.grains over run.t_end at gas.temperature (Enskog)");
@@ -150,7 +152,8 @@ void check_duration(const Scene& s, const std::string& backend) {
                "the progress rows (run.t_end / run.progress_interval)");
   if (s.periodic())
     refuse_above((t_end - s.gas.equilibration) / s.gas.sample_interval, kMaxSamples,
-                 "gas.sample_interval", "the temperature samples (run.t_end / gas.sample_interval)");
+                 "gas.sample_interval",
+                 "the temperature samples (run.t_end / gas.sample_interval)");
   if (s.kind == SceneKind::kJet && s.analysis.enabled)
     refuse_above((std::min(t_end, s.analysis.window_end) - s.analysis.window_start) /
                      s.analysis.sample_interval,

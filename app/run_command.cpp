@@ -57,8 +57,10 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
     j["cell_crossings"] = s.cell_crossings;
     j["collisions_per_second"] = wall_seconds > 0.0 ? s.collisions / wall_seconds : 0.0;
   }
-  j["energy"] = {{"kinetic", e.kinetic},   {"rotational", e.rotational},
-                 {"elastic", e.elastic},   {"removed", e.removed},
+  j["energy"] = {{"kinetic", e.kinetic},
+                 {"rotational", e.rotational},
+                 {"elastic", e.elastic},
+                 {"removed", e.removed},
                  {"dissipated", e.dissipated}};
   return j;
 }
@@ -212,8 +214,8 @@ int run_scene(const Scene& requested, const RunOptions& options,
   const SceneSupport support = check_backend(backend.name, requested);
   const Scene& scene = support.resolved;
   std::unique_ptr<Simulator<D>> sim = make_simulator<D>(backend.name, scene);
-  RunLog log(options.log ? log_path_for(out_file) : std::filesystem::path(),
-             resume_from != nullptr, options.quiet ? nullptr : &out);
+  RunLog log(options.log ? log_path_for(out_file) : std::filesystem::path(), resume_from != nullptr,
+             options.quiet ? nullptr : &out);
   write_log_head(log, options, scene, out_file, resume_from != nullptr);
   const Say say = [&](const std::string& text) {
     std::cerr << "granjet: " << text << "\n";
@@ -302,7 +304,8 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
     worst = std::max(worst, code);
     members.push_back({seed, file});
   }
-  const nlohmann::json header = {{"scene", scene.name}, {"backend", options.backend}, {"dimension", D}};
+  const nlohmann::json header = {
+      {"scene", scene.name}, {"backend", options.backend}, {"dimension", D}};
   const int combined = merge_ensemble(out_file, options.summary, header, members, D);
   if (combined > 0)
     out << "ensemble of " << combined << " seeds: /fields and /analysis in " << out_file.string()
@@ -313,7 +316,7 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
 // What a resume may change: how long the run goes on, how it reports, and the thread count
 // (the results do not depend on it). Anything else would make it another run.
 const std::vector<std::string> kResumableKeys = {"run.t_end", "run.threads",
-                                                  "run.progress_interval"};
+                                                 "run.progress_interval"};
 
 int resume_command(const ResumeOptions& options, std::ostream& out) {
   const std::filesystem::path& partial = options.partial;
@@ -321,13 +324,15 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
     throw InputError(partial.string(), "is not a run's .partial file (RUN.h5.partial)");
   const analysis::FileSummary stored = analysis::read_summary(partial);
   if (!stored.checkpoint)
-    throw InputError(partial.string(), "holds no checkpoint: the run stopped before its first "
-                                       "run.checkpoint_interval; run it again");
+    throw InputError(partial.string(),
+                     "holds no checkpoint: the run stopped before its first "
+                     "run.checkpoint_interval; run it again");
   for (const std::string& assignment : options.overrides) {
     const std::string key = assignment.substr(0, assignment.find('='));
     if (std::find(kResumableKeys.begin(), kResumableKeys.end(), key) == kResumableKeys.end())
-      throw InputError(key, "cannot change on resume (it would make another run); allowed: "
-                            "run.t_end, run.threads, run.progress_interval");
+      throw InputError(key,
+                       "cannot change on resume (it would make another run); allowed: "
+                       "run.t_end, run.threads, run.progress_interval");
   }
   // The scene as requested: the backend resolves it again, as it did for the run.
   std::istringstream ini(stored.requested_scene_ini.empty() ? stored.scene_ini
@@ -363,8 +368,9 @@ int run_command(const RunOptions& options, std::ostream& out) {
   if (out_file.empty()) out_file = options.scene_file.stem().string() + ".h5";
   std::vector<OutputPath> outputs = run_outputs(out_file, options.summary);
   for (const std::uint64_t seed : options.seeds)
-    for (OutputPath& o : run_outputs(member_file(out_file, seed), member_file(options.summary, seed),
-                                     "seed " + std::to_string(seed) + "'s"))
+    for (OutputPath& o :
+         run_outputs(member_file(out_file, seed), member_file(options.summary, seed),
+                     "seed " + std::to_string(seed) + "'s"))
       outputs.push_back(std::move(o));
   check_outputs(options.scene_file, outputs);
   if (!options.seeds.empty())

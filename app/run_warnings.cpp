@@ -24,8 +24,8 @@ std::vector<std::string> run_warnings(const Scene& s, const Backend& backend) {
                        " starts: no fields will be measured");
   if (s.kind == SceneKind::kJet && s.wall.kind != WallKind::kPlate &&
       s.wall.diameter < 2.0 * s.wall.spacing)
-    warnings.push_back("wall.diameter = " + number(s.wall.diameter) + " at wall.spacing = " +
-                       number(s.wall.spacing) +
+    warnings.push_back("wall.diameter = " + number(s.wall.diameter) +
+                       " at wall.spacing = " + number(s.wall.spacing) +
                        " makes a target of one grain: the jet mostly misses it");
   return warnings;
 }

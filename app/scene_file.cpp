@@ -1,13 +1,13 @@
 #include "app/scene_file.hpp"
 
-#include <boost/program_options.hpp>
 #include <algorithm>
+#include <boost/program_options.hpp>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <functional>
-#include <limits>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -77,8 +77,8 @@ Key real_key(std::string name, std::string meaning, Member member, Range range) 
           [name, member, range](Scene& s, const std::string& text) {
             const double v = parse_double(name, text);
             if (!range.contains(v))
-              throw InputError(name, format_number(v) + " is outside the allowed range " +
-                                         range.describe());
+              throw InputError(
+                  name, format_number(v) + " is outside the allowed range " + range.describe());
             member(s) = v;
           },
           [member](const Scene& s) { return format_number(member(s)); }};
@@ -91,7 +91,8 @@ Key integer_key(std::string name, std::string meaning, Member member, std::int64
                 std::int64_t hi = std::numeric_limits<std::int64_t>::max()) {
   using Stored = std::remove_cvref_t<decltype(member(std::declval<Scene&>()))>;
   constexpr auto stored_max = std::numeric_limits<Stored>::max();
-  if (std::in_range<std::int64_t>(stored_max)) hi = std::min(hi, static_cast<std::int64_t>(stored_max));
+  if (std::in_range<std::int64_t>(stored_max))
+    hi = std::min(hi, static_cast<std::int64_t>(stored_max));
   const std::string allowed =
       "an integer " + (hi == std::numeric_limits<std::int64_t>::max()
                            ? ">= " + std::to_string(lo)
@@ -132,35 +133,37 @@ Key choice_key(std::string name, std::string meaning, Member member,
 // required (the analysis reads them back), omega, force and contacts are optional.
 Key output_fields_key() {
   static const std::vector<std::string> required = {"position", "velocity", "radius", "id"};
-  const std::string allowed = "position, velocity, radius, id (all required) and any of omega, "
-                              "force, contacts";
-  return {"output.fields", "per-grain data in each frame; allowed " + allowed,
-          [allowed](Scene& s, const std::string& text) {
-            std::set<std::string> seen;
-            std::string word;
-            for (std::istringstream in(text); std::getline(in, word, ',');) {
-              word.erase(0, word.find_first_not_of(" \t"));
-              word.erase(word.find_last_not_of(" \t") + 1);
-              const bool known = word == "omega" || word == "force" || word == "contacts" ||
-                                 std::find(required.begin(), required.end(), word) != required.end();
-              if (!known) throw InputError("output.fields", "'" + word + "' is not one of " + allowed);
-              if (!seen.insert(word).second)
-                throw InputError("output.fields", "'" + word + "' is listed twice");
-            }
-            for (const std::string& r : required)
-              if (!seen.count(r))
-                throw InputError("output.fields", "'" + text + "' lacks " + r + "; allowed " + allowed);
-            s.output.omega = seen.count("omega") > 0;
-            s.output.force = seen.count("force") > 0;
-            s.output.contacts = seen.count("contacts") > 0;
-          },
-          [](const Scene& s) {
-            std::string list = "position, velocity, radius, id";
-            if (s.output.omega) list += ", omega";
-            if (s.output.force) list += ", force";
-            if (s.output.contacts) list += ", contacts";
-            return list;
-          }};
+  const std::string allowed =
+      "position, velocity, radius, id (all required) and any of omega, "
+      "force, contacts";
+  return {
+      "output.fields", "per-grain data in each frame; allowed " + allowed,
+      [allowed](Scene& s, const std::string& text) {
+        std::set<std::string> seen;
+        std::string word;
+        for (std::istringstream in(text); std::getline(in, word, ',');) {
+          word.erase(0, word.find_first_not_of(" \t"));
+          word.erase(word.find_last_not_of(" \t") + 1);
+          const bool known = word == "omega" || word == "force" || word == "contacts" ||
+                             std::find(required.begin(), required.end(), word) != required.end();
+          if (!known) throw InputError("output.fields", "'" + word + "' is not one of " + allowed);
+          if (!seen.insert(word).second)
+            throw InputError("output.fields", "'" + word + "' is listed twice");
+        }
+        for (const std::string& r : required)
+          if (!seen.count(r))
+            throw InputError("output.fields", "'" + text + "' lacks " + r + "; allowed " + allowed);
+        s.output.omega = seen.count("omega") > 0;
+        s.output.force = seen.count("force") > 0;
+        s.output.contacts = seen.count("contacts") > 0;
+      },
+      [](const Scene& s) {
+        std::string list = "position, velocity, radius, id";
+        if (s.output.omega) list += ", omega";
+        if (s.output.force) list += ", force";
+        if (s.output.contacts) list += ", contacts";
+        return list;
+      }};
 }
 
 // Accessor of one scene member, usable on a const and a mutable Scene.
@@ -173,8 +176,7 @@ const std::vector<Key>& keys() {
                  [](Scene& s, const std::string& v) { s.name = v; },
                  [](const Scene& s) { return s.name; }});
     k.push_back(choice_key<SceneKind>(
-        "scene.kind", "what to build (gas, hcs: periodic boxes, event_driven backend)",
-        FIELD(kind),
+        "scene.kind", "what to build (gas, hcs: periodic boxes, event_driven backend)", FIELD(kind),
         {{"jet", SceneKind::kJet},
          {"binary", SceneKind::kBinary},
          {"gas", SceneKind::kGas},
@@ -193,8 +195,8 @@ const std::vector<Key>& keys() {
                          FIELD(contact.contact_time), kPositive));
     k.push_back(real_key("contact.friction", "Coulomb friction mu_p (0: frictionless)",
                          FIELD(contact.friction), kNonNegative));
-    k.push_back(real_key("contact.spring_ratio", "k_t / k_n", FIELD(contact.spring_ratio),
-                         kPositive));
+    k.push_back(
+        real_key("contact.spring_ratio", "k_t / k_n", FIELD(contact.spring_ratio), kPositive));
     k.push_back(real_key("contact.damping_ratio", "eta_t / eta_n", FIELD(contact.damping_ratio),
                          kNonNegative));
     k.push_back(choice_key<bool>(
@@ -203,15 +205,15 @@ const std::vector<Key>& keys() {
         "raises e above [3.5]",
         FIELD(contact.clamp_normal), {{"false", false}, {"true", true}}));
     k.push_back(real_key("run.t_end", "simulated time in d/u0", FIELD(run.t_end), kPositive));
-    k.push_back(real_key("run.dt", "time step (0: 0.02 t_c, the study's)", FIELD(run.dt),
-                         kNonNegative));
+    k.push_back(
+        real_key("run.dt", "time step (0: 0.02 t_c, the study's)", FIELD(run.dt), kNonNegative));
     k.push_back(choice_key<IntegratorKind>(
         "run.integrator", "time integrator", FIELD(run.integrator),
         {{"ab2", IntegratorKind::kAdamsBashforth2}, {"verlet", IntegratorKind::kVelocityVerlet}}));
     k.push_back(integer_key("run.seed", "random seed of the site removal", FIELD(run.seed), 0));
     // A skin of several d lists (1 + skin)^D times the contacts: memory and time for nothing.
-    k.push_back(real_key("run.skin", "neighbour-list skin in d", FIELD(run.skin),
-                         {0.0, true, 5.0, false}));
+    k.push_back(
+        real_key("run.skin", "neighbour-list skin in d", FIELD(run.skin), {0.0, true, 5.0, false}));
     k.push_back(real_key("run.max_overlap",
                          "blow-up when an overlap exceeds this fraction of the smaller radius",
                          FIELD(run.max_overlap), {0.0, true, 1.0, false}));
@@ -228,7 +230,8 @@ const std::vector<Key>& keys() {
                          FIELD(jet.diameter), kPositive));
     k.push_back(real_key("jet.phi_tilde", "fraction of lattice sites kept, phi~0",
                          FIELD(jet.phi_tilde), {0.0, true, 1.0, false}));
-    k.push_back(integer_key("jet.grains", "number of jet grains", FIELD(jet.grains), 1, kMaxGrains));
+    k.push_back(
+        integer_key("jet.grains", "number of jet grains", FIELD(jet.grains), 1, kMaxGrains));
     k.push_back(real_key("jet.spacing", "lattice nearest-neighbour distance in d",
                          FIELD(jet.spacing), {1.0, false, kInf, false}));
     k.push_back(choice_key<Dispersity>("jet.dispersity", "grain sizes", FIELD(jet.dispersity),
@@ -236,8 +239,8 @@ const std::vector<Key>& keys() {
     k.push_back(real_key("jet.small_diameter", "bidisperse: diameter of the small grains",
                          FIELD(jet.small_diameter), {0.0, true, 1.0, false}));
     k.push_back(real_key("jet.speed", "incident speed u0", FIELD(jet.speed), kPositive));
-    k.push_back(real_key("jet.gap", "surface gap between jet front and target",
-                         FIELD(jet.gap), kNonNegative));
+    k.push_back(real_key("jet.gap", "surface gap between jet front and target", FIELD(jet.gap),
+                         kNonNegative));
     k.push_back(choice_key<bool>("jet.mass_by_volume",
                                  "false: every grain has mass m (the study's convention)",
                                  FIELD(jet.mass_by_volume), {{"false", false}, {"true", true}}));
@@ -251,14 +254,15 @@ const std::vector<Key>& keys() {
                          "rectangle: aspect ratio l, long side sqrt(A l) along x, short side "
                          "sqrt(A/l) along y",
                          FIELD(jet.aspect_ratio), {1.0, false, kInf, false}));
-    k.push_back(real_key("jet.area", "rectangle: cross-section area A in d^2", FIELD(jet.area),
-                         kPositive));
+    k.push_back(
+        real_key("jet.area", "rectangle: cross-section area A in d^2", FIELD(jet.area), kPositive));
     k.push_back(choice_key<WallKind>(
         "wall.kind",
         "the target: tethered grains (springs k_w, dashpots eta_w), fixed grains (immovable), or "
         "plate (a flat immovable wall in the grains' front face, no target grains)",
         FIELD(wall.kind),
-        {{"tethered", WallKind::kTethered}, {"fixed", WallKind::kFixed},
+        {{"tethered", WallKind::kTethered},
+         {"fixed", WallKind::kFixed},
          {"plate", WallKind::kPlate}}));
     k.push_back(real_key("wall.diameter", "D_tar (3D) or 2 R_tar (2D), in d", FIELD(wall.diameter),
                          {1.0, false, kInf, false}));
@@ -279,18 +283,18 @@ const std::vector<Key>& keys() {
                          kPositive));
     k.push_back(real_key("binary.impact_parameter", "lateral offset in d (0: head-on)",
                          FIELD(binary.impact_parameter), {0.0, false, 1.0, true}));
-    k.push_back(real_key("binary.gap", "initial surface gap in d", FIELD(binary.gap),
-                         kNonNegative));
+    k.push_back(
+        real_key("binary.gap", "initial surface gap in d", FIELD(binary.gap), kNonNegative));
     k.push_back(real_key("binary.spin", "initial spin of grain 1 about z", FIELD(binary.spin),
                          {-kInf, true, kInf, true}));
     k.push_back(real_key("region.radius", "remove grains farther from the jet axis",
                          FIELD(region.radius), kPositive));
     k.push_back(real_key("region.below", "remove grains farther behind the target plane",
                          FIELD(region.below), kPositive));
-    k.push_back(real_key("gas.phi", "packing fraction of the periodic gas",
-                         FIELD(gas.phi), {0.0, true, 1.0, true}));
-    k.push_back(integer_key("gas.grains", "number of gas grains (d = m = 1)", FIELD(gas.grains),
-                            2, kMaxGrains));
+    k.push_back(real_key("gas.phi", "packing fraction of the periodic gas", FIELD(gas.phi),
+                         {0.0, true, 1.0, true}));
+    k.push_back(integer_key("gas.grains", "number of gas grains (d = m = 1)", FIELD(gas.grains), 2,
+                            kMaxGrains));
     k.push_back(real_key("gas.temperature", "initial granular temperature T = sum m v^2 / (D N)",
                          FIELD(gas.temperature), kPositive));
     k.push_back(real_key("gas.equilibration", "sim time before the measurements start",
@@ -298,8 +302,7 @@ const std::vector<Key>& keys() {
     k.push_back(real_key("gas.sample_interval", "sim time between temperature samples",
                          FIELD(gas.sample_interval), kPositive));
     k.push_back(choice_key<RestitutionLaw>(
-        "ed.restitution_law", "event_driven restitution law (spec §8)",
-        FIELD(ed.restitution_law),
+        "ed.restitution_law", "event_driven restitution law (spec §8)", FIELD(ed.restitution_law),
         {{"constant", RestitutionLaw::kConstant},
          {"velocity_dependent", RestitutionLaw::kVelocityDependent},
          {"tc_model", RestitutionLaw::kTcModel}}));
@@ -322,7 +325,8 @@ const std::vector<Key>& keys() {
         "(MDAnalysis loads the file without flags), reduced names them d, d u0-1, u0, m u0+2 d-1",
         FIELD(output.unit_labels),
         {{"mdanalysis", UnitLabels::kMdAnalysis}, {"reduced", UnitLabels::kReduced}}));
-    k.push_back(choice_key<bool>("analysis.enabled", "measure the fields of spec §6 during jet runs",
+    k.push_back(choice_key<bool>("analysis.enabled",
+                                 "measure the fields of spec §6 during jet runs",
                                  FIELD(analysis.enabled), {{"true", true}, {"false", false}}));
     k.push_back(real_key("analysis.window_start", "start of the time average",
                          FIELD(analysis.window_start), kNonNegative));
@@ -332,8 +336,8 @@ const std::vector<Key>& keys() {
                          FIELD(analysis.sample_interval), kPositive));
     k.push_back(integer_key("analysis.lateral_bins", "bins across the target (3D rings, 2D bins)",
                             FIELD(analysis.lateral_bins), 1));
-    k.push_back(integer_key("analysis.layers", "layers stacked above the wall",
-                            FIELD(analysis.layers), 1));
+    k.push_back(
+        integer_key("analysis.layers", "layers stacked above the wall", FIELD(analysis.layers), 1));
     k.push_back(real_key("analysis.layer_height", "height of a layer in d",
                          FIELD(analysis.layer_height), kPositive));
     k.push_back(choice_key<HeightOrigin>(
@@ -385,8 +389,8 @@ std::string suggestion(const std::string& name) {
 const Key& find_key(const std::string& name) {
   for (const Key& k : keys())
     if (k.name == name) return k;
-  throw InputError(name, "unknown key" + suggestion(name) +
-                             " (see 'granjet --help' for the scene keys)");
+  throw InputError(name,
+                   "unknown key" + suggestion(name) + " (see 'granjet --help' for the scene keys)");
 }
 
 void apply_override(Scene& scene, const std::string& assignment) {
@@ -402,8 +406,8 @@ template <int D>
 void validate_gas_lattice(const Scene& s) {
   const GasLattice<D> lattice = gas_lattice<D>(s.gas);
   if (lattice.box.minCoeff() < 3.0)
-    throw InputError("gas.grains", std::to_string(s.gas.grains) + " grains at gas.phi = " +
-                                       format_number(s.gas.phi) +
+    throw InputError("gas.grains", std::to_string(s.gas.grains) +
+                                       " grains at gas.phi = " + format_number(s.gas.phi) +
                                        " make a box narrower than 3 diameters; add grains");
   // The packing fraction scales as the lattice spacing to the power -D.
   if (lattice.nearest < 1.0)
@@ -421,7 +425,8 @@ void validate_gas(const Scene& s) {
   if (s.gas.equilibration >= s.run.t_end)
     throw InputError("gas.equilibration", format_number(s.gas.equilibration) +
                                               " leaves nothing to measure: must be smaller than "
-                                              "run.t_end = " + format_number(s.run.t_end));
+                                              "run.t_end = " +
+                                              format_number(s.run.t_end));
 }
 
 // The target grains must not overlap, and the tethers join lattice neighbours only: grains
@@ -430,16 +435,17 @@ void validate_gas(const Scene& s) {
 void validate_wall(const Scene& s) {
   const WallSpec& w = s.wall;
   if (w.jitter > 0.5 * (w.spacing - 1.0) + 1e-12)
-    throw InputError("wall.jitter", format_number(w.jitter) + " would let target grains overlap: "
-                                    "at most (wall.spacing - 1)/2 = " +
+    throw InputError("wall.jitter", format_number(w.jitter) +
+                                        " would let target grains overlap: "
+                                        "at most (wall.spacing - 1)/2 = " +
                                         format_number(0.5 * (w.spacing - 1.0)));
   const bool square = w.lattice == WallLattice::kSquare;
   if (square && s.dimension == 2)
-    throw InputError("wall.lattice", "square is a 3D lattice; the 2D target is a row: use hexagonal");
+    throw InputError("wall.lattice",
+                     "square is a 3D lattice; the 2D target is a row: use hexagonal");
   const double next_nearest = s.dimension == 2 ? 2.0 : square ? std::sqrt(2.0) : std::sqrt(3.0);
   if (w.spacing + 4.0 * w.jitter >= next_nearest * w.spacing)
-    throw InputError("wall.jitter", format_number(w.jitter) +
-                                        " is too large for wall.spacing = " +
+    throw InputError("wall.jitter", format_number(w.jitter) + " is too large for wall.spacing = " +
                                         format_number(w.spacing) +
                                         ": shifted sites could reach their next-nearest "
                                         "neighbours' tether range");
@@ -493,14 +499,15 @@ Scene parse_scene_text(const std::string& text, const std::string& source,
       std::string where;
       for (const int line : assignment_lines(text, o.string_key))
         where += (where.empty() ? "lines " : " and ") + std::to_string(line);
-      throw InputError(o.string_key, "given twice in " + source + " (" + where +
-                                         "); keep the one you mean");
+      throw InputError(o.string_key,
+                       "given twice in " + source + " (" + where + "); keep the one you mean");
     }
     find_key(o.string_key).set(scene, o.value.front());
   }
   if (require_kind && !given.contains("scene.kind"))
-    throw InputError(source, "names no scene.kind: a scene file says what it builds "
-                             "([scene] kind = jet | binary | gas | hcs)");
+    throw InputError(source,
+                     "names no scene.kind: a scene file says what it builds "
+                     "([scene] kind = jet | binary | gas | hcs)");
   for (const std::string& assignment : overrides) apply_override(scene, assignment);
   validate_scene(scene);
   return scene;
@@ -516,8 +523,7 @@ Scene parse_scene(std::istream& in, const std::string& source,
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
-    throw InputError(file.string(), "no such scene file");
+  if (!std::filesystem::exists(file, ec)) throw InputError(file.string(), "no such scene file");
   if (!std::filesystem::is_regular_file(file, ec))
     throw InputError(file.string(), "is not a regular file; a scene is an INI file");
   std::ifstream in(file);
@@ -529,11 +535,12 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
 
 void validate_scene(const Scene& s) {
   if (s.analysis.window_end <= s.analysis.window_start)
-    throw InputError("analysis.window_end",
-                     format_number(s.analysis.window_end) + " must be after analysis.window_start = " +
-                         format_number(s.analysis.window_start));
+    throw InputError("analysis.window_end", format_number(s.analysis.window_end) +
+                                                " must be after analysis.window_start = " +
+                                                format_number(s.analysis.window_start));
   if (s.dt() >= s.contact.contact_time)
-    throw InputError("run.dt", format_number(s.dt()) + " must be smaller than contact.contact_time = " +
+    throw InputError("run.dt", format_number(s.dt()) +
+                                   " must be smaller than contact.contact_time = " +
                                    format_number(s.contact.contact_time));
   if (s.periodic()) validate_gas(s);
   if (s.kind == SceneKind::kJet) validate_wall(s);
@@ -549,8 +556,9 @@ void validate_scene(const Scene& s) {
                          " must be smaller than region.radius = " + format_number(s.region.radius) +
                          " (grains are removed there before they could be seen scattered)");
   if (s.kind == SceneKind::kJet && s.dimension == 2 && s.jet.shape == JetShape::kRectangle)
-    throw InputError("jet.shape", "rectangle is a 3D cross section (scene.dimension = 3); the 2D "
-                                  "jet is a strip of width jet.diameter: use cylinder");
+    throw InputError("jet.shape",
+                     "rectangle is a 3D cross section (scene.dimension = 3); the 2D "
+                     "jet is a strip of width jet.diameter: use cylinder");
 }
 
 std::string scene_to_ini(const Scene& scene) {

@@ -24,8 +24,8 @@ std::vector<std::uint64_t> parse_seeds(const std::string& text, const std::strin
     const std::uint64_t first = number(text.substr(0, dots)), last = number(text.substr(dots + 2));
     if (last < first) throw bad();
     if (last - first >= kMaxSeeds)
-      throw InputError(key, "'" + text + "' is " + std::to_string(last - first) + " + 1 seeds; at most " +
-                                std::to_string(kMaxSeeds));
+      throw InputError(key, "'" + text + "' is " + std::to_string(last - first) +
+                                " + 1 seeds; at most " + std::to_string(kMaxSeeds));
     // Counted, not compared with `last`: a range ending at the largest seed must not wrap.
     for (std::uint64_t k = 0; k <= last - first; ++k) seeds.push_back(first + k);
     return seeds;
@@ -35,11 +35,13 @@ std::vector<std::uint64_t> parse_seeds(const std::string& text, const std::strin
     seeds.push_back(number(text.substr(start, comma - start)));
   seeds.push_back(number(text.substr(start)));
   if (seeds.size() > kMaxSeeds)
-    throw InputError(key, std::to_string(seeds.size()) + " seeds; at most " + std::to_string(kMaxSeeds));
+    throw InputError(key,
+                     std::to_string(seeds.size()) + " seeds; at most " + std::to_string(kMaxSeeds));
   std::vector<std::uint64_t> sorted = seeds;
   std::sort(sorted.begin(), sorted.end());
   if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
-    throw InputError(key, "seed " + std::to_string(*twice) + " is listed twice (its runs would share a file)");
+    throw InputError(
+        key, "seed " + std::to_string(*twice) + " is listed twice (its runs would share a file)");
   return seeds;
 }
 

@@ -34,5 +34,13 @@ void BM_JetInlineAnalysis(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_JetInlineAnalysis<3>)->Arg(0)->Arg(1)->ArgName("analysis")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_JetInlineAnalysis<2>)->Arg(0)->Arg(1)->ArgName("analysis")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JetInlineAnalysis<3>)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("analysis")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JetInlineAnalysis<2>)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("analysis")
+    ->Unit(benchmark::kMillisecond);

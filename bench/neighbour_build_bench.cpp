@@ -22,8 +22,8 @@ void BM_NeighbourBuildJet3d(benchmark::State& state) {
       sorted.push_back(p.position()[k]);
       radius.push_back(p.radius()[k]);
     }
-    granjet::build_half_pairs<3>(grid, sorted, radius, skin, [](auto, auto) { return false; },
-                                 pairs);
+    granjet::build_half_pairs<3>(
+        grid, sorted, radius, skin, [](auto, auto) { return false; }, pairs);
     benchmark::DoNotOptimize(pairs.partner.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(p.size()));

@@ -26,7 +26,9 @@ class InputError : public std::runtime_error {
 class BlowUpError : public std::runtime_error {
  public:
   BlowUpError(const std::string& what, std::int64_t step, double time, std::vector<GrainId> ids)
-      : std::runtime_error(message(what, step, time, ids)), step_(step), time_(time),
+      : std::runtime_error(message(what, step, time, ids)),
+        step_(step),
+        time_(time),
         ids_(std::move(ids)) {}
   std::int64_t step() const { return step_; }
   double time() const { return time_; }

@@ -44,8 +44,8 @@ std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) 
   const double a = std::sqrt(2.0) * jet.spacing;  // cube edge
   const int n_xy = static_cast<int>(jet.outer_radius() / a) + 2;
   // Each half cube layer holds two of the four fcc basis sites.
-  constexpr std::array<std::array<double, 2>, 4> kBasis{{{0.0, 0.0}, {0.5, 0.5}, {0.5, 0.0},
-                                                         {0.0, 0.5}}};
+  constexpr std::array<std::array<double, 2>, 4> kBasis{
+      {{0.0, 0.0}, {0.5, 0.5}, {0.5, 0.0}, {0.0, 0.5}}};
   std::vector<Vec<3>> sites;
   for (int layer = 0; !is_complete(sites, jet.grains); ++layer) {
     const int sub = layer % 2;
@@ -177,9 +177,8 @@ Particles<D> build_jet(const Scene& scene) {
     p.add(id++, GrainKind::kFree, x, velocity, 0.5 * diameters[i],
           grain_mass<D>(scene.jet, diameters[i]));
   }
-  const double wall_mass = scene.wall.kind == WallKind::kFixed
-                               ? std::numeric_limits<double>::infinity()
-                               : 1.0;
+  const double wall_mass =
+      scene.wall.kind == WallKind::kFixed ? std::numeric_limits<double>::infinity() : 1.0;
   if (scene.wall.kind == WallKind::kPlate) return p;  // the plate replaces the target grains
   for (const Vec<D>& x : wall)
     p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kWallGrainDiameter, wall_mass);

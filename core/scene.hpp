@@ -51,8 +51,8 @@ struct RunSpec {
   double dt = 0.0;  // 0: the study's dt = 0.02 t_c [spec §3]
   IntegratorKind integrator = IntegratorKind::kAdamsBashforth2;
   std::uint64_t seed = 1;
-  double skin = 0.3;          // Verlet skin in d
-  double max_overlap = 0.5;   // blow-up when overlap exceeds this fraction of the smaller radius
+  double skin = 0.3;         // Verlet skin in d
+  double max_overlap = 0.5;  // blow-up when overlap exceeds this fraction of the smaller radius
   double progress_interval = 1.0;  // sim time between progress rows
   int threads = 1;  // soft DEM OpenMP threads; the results do not depend on it, bit for bit
   // Sim time between checkpoints in the run's .partial (0: none). A checkpoint is part of the
@@ -61,14 +61,14 @@ struct RunSpec {
 };
 
 struct JetSpec {
-  double diameter = 10.0;   // D_jet (3D) or strip width 2 R_jet (2D)
-  double phi_tilde = 0.9;   // fraction of lattice sites kept [spec §5]
+  double diameter = 10.0;  // D_jet (3D) or strip width 2 R_jet (2D)
+  double phi_tilde = 0.9;  // fraction of lattice sites kept [spec §5]
   std::int64_t grains = 20000;
-  double spacing = 1.0;     // lattice nearest-neighbour distance (fcc 1.0, 2D triangular 1.1)
+  double spacing = 1.0;  // lattice nearest-neighbour distance (fcc 1.0, 2D triangular 1.1)
   Dispersity dispersity = Dispersity::kMono;
   double small_diameter = 0.8;  // bidisperse: the small grains' diameter (large = 1)
-  double speed = 1.0;       // u0
-  double gap = 1.0;         // surface gap between the jet front and the target grains
+  double speed = 1.0;           // u0
+  double gap = 1.0;             // surface gap between the jet front and the target grains
   bool mass_by_volume = false;  // false: every grain has mass m (the study's convention)
   // Anisotropy runs (spec §5, F4.3; 3D only): a rectangle of area A = `area` (d^2) and aspect
   // ratio l = `aspect_ratio` >= 1, long side sqrt(A l) along x, short side sqrt(A/l) along y,
@@ -89,13 +89,13 @@ struct JetSpec {
 
 struct WallSpec {
   WallKind kind = WallKind::kTethered;
-  double diameter = 22.0;   // D_tar (3D disk) or 2 R_tar (2D segment)
+  double diameter = 22.0;                         // D_tar (3D disk) or 2 R_tar (2D segment)
   WallLattice lattice = WallLattice::kHexagonal;  // 3D; the 2D target is a row
-  double spacing = 1.0;     // centre distance of lattice neighbours (1: touching)
+  double spacing = 1.0;  // centre distance of lattice neighbours (1: touching)
   // A random layer: each site moved in the target plane by a uniform random vector of length at
   // most `jitter` (drawn from run.seed), never so far that target grains overlap.
   double jitter = 0.0;
-  double spring = 10.0;     // k_w in m u0^2/d^2
+  double spring = 10.0;        // k_w in m u0^2/d^2
   double damping_ratio = 5.0;  // eta_w / eta_n
 };
 
@@ -117,10 +117,10 @@ struct RegionSpec {
 // started on a lattice with Maxwellian velocities of temperature gas.temperature.
 struct GasSpec {
   double phi = 0.3;
-  std::int64_t grains = 10976;  // 4 * 14^3: a full fcc lattice
-  double temperature = 1.0;     // T = sum m v^2 / (D N), zero total momentum
-  double equilibration = 2.0;   // sim time before the measurements start
-  double sample_interval = 0.1; // sim time between temperature samples (cooling)
+  std::int64_t grains = 10976;   // 4 * 14^3: a full fcc lattice
+  double temperature = 1.0;      // T = sum m v^2 / (D N), zero total momentum
+  double equilibration = 2.0;    // sim time before the measurements start
+  double sample_interval = 0.1;  // sim time between temperature samples (cooling)
 };
 
 // The event-driven backend [spec §8]. velocity_dependent: e(v_n) = 1 - (1 - e0)(v_n/v0)^(3/4)
@@ -145,7 +145,8 @@ struct AnalysisSpec {
   int layers = 1;        // stacked layers of layer_height above the wall
   double layer_height = 5.0;
   HeightOrigin height_origin = HeightOrigin::kWallCentres;  // h = 0 of the layers
-  double scatter_radius = 0.0;  // where grains count as scattered; 0: from the target (run_analysis)
+  double scatter_radius =
+      0.0;  // where grains count as scattered; 0: from the target (run_analysis)
 };
 
 // The unit attributes of the H5MD output: MDAnalysis reads only molecular unit names, so

@@ -43,12 +43,12 @@ struct ForceSample {
 };
 
 struct SimStats {
-  std::int64_t steps = 0;          // DEM time steps (0 for event-driven)
-  std::int64_t particle_steps = 0; // sum over steps of the grains integrated (free grains)
-  std::int64_t contacts = 0;       // contacts at the last step
+  std::int64_t steps = 0;           // DEM time steps (0 for event-driven)
+  std::int64_t particle_steps = 0;  // sum over steps of the grains integrated (free grains)
+  std::int64_t contacts = 0;        // contacts at the last step
   std::int64_t neighbour_rebuilds = 0;
-  std::int64_t removed = 0;        // grains that left the region and were removed
-  std::int64_t events = 0;         // event-driven only
+  std::int64_t removed = 0;  // grains that left the region and were removed
+  std::int64_t events = 0;   // event-driven only
   std::int64_t collisions = 0;
   std::int64_t cell_crossings = 0;
 };
@@ -64,11 +64,11 @@ inline SimStats get_stats(const StateArchive& a, const std::string& name) {
 }
 
 struct EnergyBalance {
-  double kinetic = 0.0;      // translational, free and wall grains
+  double kinetic = 0.0;  // translational, free and wall grains
   double rotational = 0.0;
-  double elastic = 0.0;      // contact and tether springs
-  double removed = 0.0;      // carried away by removed grains
-  double dissipated = 0.0;   // initial total minus all of the above
+  double elastic = 0.0;     // contact and tether springs
+  double removed = 0.0;     // carried away by removed grains
+  double dissipated = 0.0;  // initial total minus all of the above
   double total() const { return kinetic + rotational + elastic; }
 };
 

@@ -103,7 +103,8 @@ class StateArchive {
   }
   template <class T>
   static T single(const std::vector<T>& values, const std::string& name) {
-    if (values.size() != 1) throw std::runtime_error("checkpoint entry " + name + " is not one number");
+    if (values.size() != 1)
+      throw std::runtime_error("checkpoint entry " + name + " is not one number");
     return values.front();
   }
 
@@ -134,7 +135,8 @@ class StateWriter {
     if constexpr (detail::IsVector<T>::value) {
       using E = typename T::value_type;
       if constexpr (std::is_arithmetic_v<E> && !std::is_floating_point_v<E>) {
-        archive_.put_values<std::int64_t>(key, std::vector<std::int64_t>(value.begin(), value.end()));
+        archive_.put_values<std::int64_t>(key,
+                                          std::vector<std::int64_t>(value.begin(), value.end()));
       } else if constexpr (std::is_enum_v<E>) {
         archive_.put_values<E>(key, std::span<const E>(value));
       } else {
@@ -189,7 +191,8 @@ class StateReader {
       value = static_cast<T>(archive_.integer(key));
     } else {
       const std::vector<T> one = archive_.rows<T>(key);
-      if (one.size() != 1) throw std::runtime_error("checkpoint entry " + key + " is not one value");
+      if (one.size() != 1)
+        throw std::runtime_error("checkpoint entry " + key + " is not one value");
       value = one.front();
     }
   }

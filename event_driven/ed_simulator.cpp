@@ -70,8 +70,7 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
       calendar_(grains_.size()),
       collapse_(grains_.size()) {
   const std::size_t n = grains_.size();
-  if (scene.has_wall() && scene.wall.kind == WallKind::kPlate)
-    plate_.emplace(scene.wall.diameter);
+  if (scene.has_wall() && scene.wall.kind == WallKind::kPlate) plate_.emplace(scene.wall.diameter);
   flight_.resize(n);
   std::int64_t free_grains = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -566,8 +565,8 @@ void EdSimulator<D>::check_plate_contact(std::uint32_t i) const {
   const Flight<D>& f = flight_[i];
   const double distance = (f.x - plate_->nearest_point(f.x)).norm();
   if (distance > (1.0 + kContactTolerance) * f.radius)
-    throw BlowUpError("plate collision at distance " + std::to_string(distance) +
-                          " instead of " + std::to_string(f.radius),
+    throw BlowUpError("plate collision at distance " + std::to_string(distance) + " instead of " +
+                          std::to_string(f.radius),
                       stats_.events, origin_ + clock_, {grains_.id()[i]});
 }
 
@@ -579,8 +578,7 @@ void EdSimulator<D>::check_no_overlaps() const {
     if (!alive_[i] || fixed(i)) continue;
     const Vec<D> x_i = flight_[i].position_at(now);
     // In front of the face, or (2D) beside it, where its end points count; not behind it.
-    const bool modelled =
-        plate_ && (plate_->over_face(x_i) ? plate_->height(x_i) >= 0.0 : D == 2);
+    const bool modelled = plate_ && (plate_->over_face(x_i) ? plate_->height(x_i) >= 0.0 : D == 2);
     if (modelled) {
       const double distance = (x_i - plate_->nearest_point(x_i)).norm();
       if (distance < (1.0 - kContactTolerance) * flight_[i].radius)
@@ -592,11 +590,12 @@ void EdSimulator<D>::check_no_overlaps() const {
       const std::uint32_t k = hood.grain[m];
       if (k == i) continue;
       const double sigma = flight_[i].radius + flight_[k].radius;
-      const double distance = (flight_[k].position_at(now) + hood.shift[hood.image[m]] - x_i).norm();
+      const double distance =
+          (flight_[k].position_at(now) + hood.shift[hood.image[m]] - x_i).norm();
       if (distance < (1.0 - kContactTolerance) * sigma)
-        throw BlowUpError("overlap: distance " + std::to_string(distance) + " < " +
-                              std::to_string(sigma),
-                          stats_.events, time_, {grains_.id()[i], grains_.id()[k]});
+        throw BlowUpError(
+            "overlap: distance " + std::to_string(distance) + " < " + std::to_string(sigma),
+            stats_.events, time_, {grains_.id()[i], grains_.id()[k]});
     }
   }
 }

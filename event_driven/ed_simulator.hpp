@@ -114,7 +114,7 @@ class EdSimulator final : public Simulator<D> {
   std::optional<Plate<D>> plate_;
   std::uint32_t plate_partner_;  // the plate's index as a prediction partner: one past the grains
   CellList<D> cells_;
-  typename CellList<D>::Neighbourhood hood_;  // scratch of the predictions
+  typename CellList<D>::Neighbourhood hood_;      // scratch of the predictions
   std::vector<double> pair_b_, pair_c_, pair_a_;  // and the pairs' quadratics (contact_delay)
   Calendar calendar_;
   CollapseDetector collapse_;
@@ -135,9 +135,9 @@ class EdSimulator final : public Simulator<D> {
   std::vector<PairImpulse<D>> transfers_;
   bool recording_ = false;
 
-  double origin_ = 0.0;  // absolute time of the internal clock's zero
-  double clock_ = 0.0;   // time of the event being processed, from origin_
-  double time_ = 0.0;    // absolute time of the snapshot
+  double origin_ = 0.0;           // absolute time of the internal clock's zero
+  double clock_ = 0.0;            // time of the event being processed, from origin_
+  double time_ = 0.0;             // absolute time of the snapshot
   std::int64_t shift_every_ = 0;  // events between time-origin shifts
   std::int64_t events_since_shift_ = 0;
   double initial_energy_ = 0.0;

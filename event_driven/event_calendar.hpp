@@ -12,10 +12,10 @@
 // times. kGroup = 1 is the classic one-entry-per-grain calendar.
 #pragma once
 
-#include <boost/heap/d_ary_heap.hpp>
-#include <boost/heap/pairing_heap.hpp>
 #include <array>
 #include <bit>
+#include <boost/heap/d_ary_heap.hpp>
+#include <boost/heap/pairing_heap.hpp>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -117,8 +117,7 @@ class EventCalendar {
 
 template <unsigned kArity>
 using DaryHeap = boost::heap::d_ary_heap<CalendarEntry, boost::heap::arity<kArity>,
-                                         boost::heap::mutable_<true>,
-                                         boost::heap::compare<Later>>;
+                                         boost::heap::mutable_<true>, boost::heap::compare<Later>>;
 using PairingHeap = boost::heap::pairing_heap<CalendarEntry, boost::heap::compare<Later>>;
 
 // The calendar of the simulator. Measured (bench/ed_calendar_bench.cpp, 10,976 grains, two

@@ -63,9 +63,7 @@ class Plate : public PlateFace<D> {
 
   // 2D: time until the grain touches an end point of the segment while its centre is beside the
   // segment (over it, the face comes first), or kNever.
-  double rim_delay(const Vec<D>& x, const Vec<D>& v, double r) const
-    requires(D == 2)
-  {
+  double rim_delay(const Vec<D>& x, const Vec<D>& v, double r) const requires(D == 2) {
     double first = kNever;
     for (const double side : {-1.0, 1.0}) {
       Vec<D> end = Vec<D>::Zero();

@@ -104,13 +104,13 @@ class ContactTable {
   // The contact law on contacts [begin, end); shear holds their u_t (laws with history).
   template <class Law>
   [[gnu::flatten]]  // the law inlined: only then is the loop vectorised
-  void apply(const Law& law, Columns<D>& shear, std::size_t begin, std::size_t end) {
+  void
+  apply(const Law& law, Columns<D>& shear, std::size_t begin, std::size_t end) {
     static_assert(Law::kNeedsRotation == kRotation);
     // Each contact touches only its own row of every column.
 #pragma GCC ivdep
     for (std::size_t c = begin; c < end; ++c) {
-      const ContactGeometryOf<LaneVec<D>> g{normal_.load(c), overlap_[c], lever_i_[c],
-                                            lever_j_[c]};
+      const ContactGeometryOf<LaneVec<D>> g{normal_.load(c), overlap_[c], lever_i_[c], lever_j_[c]};
       LaneVec<D> u_t = LaneVec<D>::Zero();
       if constexpr (Law::kNeedsHistory) u_t = shear.load(c);
       const LaneVec<D> f = law.force(g, v_rel_.load(c), u_t);

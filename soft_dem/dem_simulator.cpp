@@ -18,7 +18,7 @@ namespace granjet::dem {
 
 template <int D, class Law, bool kMono, class Space>
 DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
-                                                        Space space)
+                                                 Space space)
     : scene_(scene),
       space_(std::move(space)),
       p_(std::move(initial)),
@@ -92,8 +92,9 @@ void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   throw BlowUpError("the kinetic energy rose " + std::to_string(100.0 * rise / initial_energy_) +
                         "% above the initial total (counting what removed grains carried off) "
                         "although every contact dissipates (e < 1); "
-                        "only the integration adds energy: run.dt = " + std::to_string(dt_) +
-                        " (" + std::to_string(dt_ / scene_.contact.contact_time) +
+                        "only the integration adds energy: run.dt = " +
+                        std::to_string(dt_) + " (" +
+                        std::to_string(dt_ / scene_.contact.contact_time) +
                         " t_c) is too long for the contacts (the study uses 0.02 t_c); "
                         "the fastest grain is listed",
                     step_, time(), {p_.id()[fastest]});
@@ -110,9 +111,8 @@ void DemSimulator<D, Law, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
     const Ab2Step<D, kRotation> ab2 = ab2_step();
-    add_travel(force_pass([&](std::size_t i, bool forced) {
-      return forced ? ab2.advance(i) : ab2.coast(i);
-    }));
+    add_travel(force_pass(
+        [&](std::size_t i, bool forced) { return forced ? ab2.advance(i) : ab2.coast(i); }));
     first_step_ = false;
     ++step_;
   } else {
@@ -167,10 +167,11 @@ auto DemSimulator<D, Law, kMono, Space>::ab2_step() -> Ab2Step<D, kRotation> {
 
 template <int D, class Law, bool kMono, class Space>
 auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotation> {
-  return {p_.position().data(), p_.velocity().data(),     p_.spin().data(),
-          force_.data(),        force_prev_.data(),       torque_.data(),
-          torque_prev_.data(),  p_.inverse_mass().data(), inv_inertia_.data(),
-          dt_};
+  return {p_.position().data(), p_.velocity().data(),
+          p_.spin().data(),     force_.data(),
+          force_prev_.data(),   torque_.data(),
+          torque_prev_.data(),  p_.inverse_mass().data(),
+          inv_inertia_.data(),  dt_};
 }
 
 // The whole pass (the phases of force_pass.hpp): the tethers, the pairs, the plate, then each
@@ -178,9 +179,11 @@ auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotatio
 template <int D, class Law, bool kMono, class Space>
 template <class AfterRow>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
-double DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
+double
+DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
   if (tethered_)
-    wall_.add_forces(p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+    wall_.add_forces(
+        p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
   pass_.find_contacts(p_, pairs_, pair_row_, space_);
   const std::size_t first_blown = pass_.evaluate_contacts(
@@ -197,7 +200,8 @@ double DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
     const auto w = p_.spin();
     const auto radius = p_.radius();
     std::uint8_t* forced = forced_.data();
-#pragma omp parallel for num_threads(threads_) reduction(min : first_blown_on_plate) if (threads_ > 1)
+#pragma omp parallel for num_threads(threads_) reduction(min \
+                                                         : first_blown_on_plate) if (threads_ > 1)
     for (std::int64_t i = 0; i < n; ++i) {
       const Touch touch = plate_->add_force(i, x[i], radius_of(radius, i), v[i], w[i],
                                             overlap_limit_, force_[i], torque_[i]);
@@ -222,7 +226,7 @@ double DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
 template <int D, class Law, bool kMono, class Space>
 template <class OnContact, class OnApart>
 void DemSimulator<D, Law, kMono, Space>::for_each_contact_of(std::size_t i, OnContact&& on_contact,
-                                                     OnApart&& on_apart) const {
+                                                             OnApart&& on_apart) const {
   const auto x = p_.position();
   const auto radius = p_.radius();
   const Vec<D> x_i = x[i];
@@ -243,8 +247,8 @@ void DemSimulator<D, Law, kMono, Space>::for_each_contact_of(std::size_t i, OnCo
 }
 
 template <int D, class Law, bool kMono, class Space>
-Vec<D> DemSimulator<D, Law, kMono, Space>::relative_velocity(
-    std::size_t i, std::size_t j, const ContactGeometry<D>& g) const {
+Vec<D> DemSimulator<D, Law, kMono, Space>::relative_velocity(std::size_t i, std::size_t j,
+                                                             const ContactGeometry<D>& g) const {
   const auto v = p_.velocity();
   const auto w = p_.spin();
   return dem::relative_velocity<kRotation>(v[i], v[j], w[i], w[j], g);
@@ -253,18 +257,19 @@ Vec<D> DemSimulator<D, Law, kMono, Space>::relative_velocity(
 template <int D, class Law, bool kMono, class Space>
 template <class OnContact, class OnApart>
 void DemSimulator<D, Law, kMono, Space>::for_each_contact(OnContact&& on_contact,
-                                                  OnApart&& on_apart) const {
+                                                          OnApart&& on_apart) const {
   for (std::size_t i = 0; i < p_.size(); ++i)
     for_each_contact_of(
-        i, [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
-               const Vec<D>& v_rel) { on_contact(i, j, k, g, v_rel); },
+        i,
+        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          on_contact(i, j, k, g, v_rel);
+        },
         on_apart);
 }
 
 template <int D, class Law, bool kMono, class Space>
 template <class OnContact>
-void DemSimulator<D, Law, kMono, Space>::for_each_plate_contact(
-    OnContact&& on_contact) const {
+void DemSimulator<D, Law, kMono, Space>::for_each_plate_contact(OnContact&& on_contact) const {
   if (!plate_) return;
   const auto x = p_.position();
   const auto v = p_.velocity();
@@ -306,8 +311,8 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
   for (std::uint32_t i = 0; i < p_.size(); ++i) {
     const Vec<D>& x = p_.position()[i];
     const double lateral2 = x.squaredNorm() - x[kAxis] * x[kAxis];
-    const bool escaped = p_.kind()[i] == GrainKind::kFree &&
-                         (lateral2 > r2_max || x[kAxis] < -scene_.region.below);
+    const bool escaped =
+        p_.kind()[i] == GrainKind::kFree && (lateral2 > r2_max || x[kAxis] < -scene_.region.below);
     if (!escaped) {
       keep.push_back(i);
       continue;
@@ -351,7 +356,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
   Particles<D>::gather_one(force_prev_, order);
   Particles<D>::gather_one(torque_prev_, order);
   force_.assign(p_.size(), Vec<D>::Zero());  // rebuilds come between force passes
-  forced_.assign(p_.size(), 3);  // unknown after the reordering: assume forces
+  forced_.assign(p_.size(), 3);              // unknown after the reordering: assume forces
   torque_.assign(p_.size(), Dim<D>::zero_spin());
   Particles<D>::gather_one(inv_inertia_, order);
   if (plate_) plate_->gather(order);
@@ -359,11 +364,12 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
     index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
 
   const auto kind = p_.kind();
-  build_half_pairs<D>(grid_, p_.position(), p_.radius(), scene_.run.skin,
-                      [&](std::uint32_t i, std::uint32_t j) {
-                        return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
-                      },
-                      pairs_, space_, threads_);
+  build_half_pairs<D>(
+      grid_, p_.position(), p_.radius(), scene_.run.skin,
+      [&](std::uint32_t i, std::uint32_t j) {
+        return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
+      },
+      pairs_, space_, threads_);
   pair_row_.resize(pairs_.size());
   for (std::uint32_t i = 0; i < p_.size(); ++i)
     std::fill(pair_row_.begin() + pairs_.first[i], pair_row_.begin() + pairs_.first[i + 1], i);
@@ -390,8 +396,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint(StateArchive& a) {
   put_particles(a, "dem/grains", p_);
   a.put_rows<Vec<D>>("dem/force_prev", force_prev_);
   a.put_rows<Spin<D>>("dem/torque_prev", torque_prev_);
-  a.put_rows<Vec<D>>("dem/plate_shear",
-                     plate_ ? plate_->shear() : std::vector<Vec<D>>());
+  a.put_rows<Vec<D>>("dem/plate_shear", plate_ ? plate_->shear() : std::vector<Vec<D>>());
   std::vector<GrainId> pair;
   std::vector<Vec<D>> shear;
   for (const History& h : histories()) {
@@ -456,13 +461,15 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpul
   last_collect_time_ = time();
   const auto x = p_.position();
   const auto id = p_.id();
-  for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
-                       const Vec<D>& v_rel) {
-    Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
-    const Vec<D> f = law_.force(g, v_rel, shear);
-    // The partner's nearest image: position_i - position_j is the contact's separation.
-    out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
-  }, [](std::uint32_t) {});
+  for_each_contact(
+      [&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
+          const Vec<D>& v_rel) {
+        Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
+        const Vec<D> f = law_.force(g, v_rel, shear);
+        // The partner's nearest image: position_i - position_j is the contact's separation.
+        out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
+      },
+      [](std::uint32_t) {});
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
     const Vec<D> f = plate_->force(i, g, v_rel);
     out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
@@ -480,18 +487,21 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) cons
     out.contacts.push_back({id[i], j, normal, f - normal, g.overlap});
     out.total[i] += f;
   };
-  for_each_contact([&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
-                       const Vec<D>& v_rel) {
-    Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
-    const Vec<D> f = law_.force(g, v_rel, shear);
-    add(i, id[j], g, f);
-    out.total[j] -= f;
-  }, [](std::uint32_t) {});
+  for_each_contact(
+      [&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
+          const Vec<D>& v_rel) {
+        Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
+        const Vec<D> f = law_.force(g, v_rel, shear);
+        add(i, id[j], g, f);
+        out.total[j] -= f;
+      },
+      [](std::uint32_t) {});
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
     add(i, kPlateId, g, plate_->force(i, g, v_rel));
   });
   if (tethered_)
-    wall_.add_forces(p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
+    wall_.add_forces(
+        p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -503,10 +513,11 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
     if constexpr (kRotation)
       e.rotational += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
-  for_each_contact([&](std::size_t, std::size_t, std::uint32_t k, const ContactGeometry<D>& g,
-                       const Vec<D>&) {
-    e.elastic += law_.elastic_energy(g, pass_.history().of(k));
-  }, [](std::uint32_t) {});
+  for_each_contact(
+      [&](std::size_t, std::size_t, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>&) {
+        e.elastic += law_.elastic_energy(g, pass_.history().of(k));
+      },
+      [](std::uint32_t) {});
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>&) {
     e.elastic += plate_->elastic_energy(i, g);
   });
@@ -526,8 +537,10 @@ struct ContactLaw {};
 template <class Choose>
 decltype(auto) with_contact_law(ContactModel model, Choose&& choose) {
   switch (model) {
-    case ContactModel::kHertz: return choose(ContactLaw<HertzMindlin>{});
-    case ContactModel::kLinear: break;
+    case ContactModel::kHertz:
+      return choose(ContactLaw<HertzMindlin>{});
+    case ContactModel::kLinear:
+      break;
   }
   return choose(ContactLaw<LinearSpringDashpot>{});
 }
@@ -540,7 +553,8 @@ PeriodicBox<D> periodic_box(const Scene& scene) {
   if (box.box.minCoeff() < 3.0 * cut)
     throw InputError("gas.grains", "the periodic box (" + std::to_string(box.box.minCoeff()) +
                                        " d across) must be at least three neighbour cells of "
-                                       "1 + run.skin = " + std::to_string(cut) +
+                                       "1 + run.skin = " +
+                                       std::to_string(cut) +
                                        " d wide; use more grains or a lower gas.phi");
   return box;
 }
@@ -562,11 +576,11 @@ std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
 }  // namespace
 
 std::string contact_law_refusal(const Scene& scene) {
-  return with_contact_law(scene.contact.model,
-                          [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
-                            return std::string(scene.dimension == 2 ? LawOf<2, false>::kUnsupported
-                                                                    : LawOf<3, false>::kUnsupported);
-                          });
+  return with_contact_law(
+      scene.contact.model, [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
+        return std::string(scene.dimension == 2 ? LawOf<2, false>::kUnsupported
+                                                : LawOf<3, false>::kUnsupported);
+      });
 }
 
 template <int D>

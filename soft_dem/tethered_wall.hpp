@@ -1,6 +1,7 @@
 // The tethered target [spec §4]: each wall grain is tied to its initial position and to its
-// neighbouring wall grains (lattice neighbours, those within `bond_range`) by springs k_w (rest length = initial distance) with dashpots
-// eta_w = damping_ratio * eta_n. Bonds are kept by grain id, so reordering is harmless.
+// neighbouring wall grains (lattice neighbours, those within `bond_range`) by springs k_w (rest
+// length = initial distance) with dashpots eta_w = damping_ratio * eta_n. Bonds are kept by grain
+// id, so reordering is harmless.
 #pragma once
 
 #include <cmath>
@@ -80,6 +81,7 @@ class TetheredWall {
   };
   double spring_ = 0.0;
   double damping_ = 0.0;
+
  public:
   // Checkpoints: the anchors and bonds by grain id.
   void save(StateArchive& a, const std::string& prefix) const {

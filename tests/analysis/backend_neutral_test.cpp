@@ -27,7 +27,7 @@ analysis::Table kinetic_fields(const std::string& backend, const Scene& scene) {
 TEST(BackendNeutralAnalysis, SameParticlesGiveTheSameKineticStressOnBothBackends) {
   Scene scene;
   scene.jet.grains = 600;
-  scene.jet.gap = 0.2;      // the front row inside the first layer above the wall
+  scene.jet.gap = 0.2;       // the front row inside the first layer above the wall
   scene.jet.spacing = 1.05;  // not touching: the hard-core backend keeps the lattice as it is
   scene.contact.friction = 0.0;
   scene.wall.kind = WallKind::kFixed;
@@ -55,10 +55,10 @@ TEST(BackendNeutralAnalysis, SameParticlesGiveTheSameKineticStressOnBothBackends
 // 1.7 d, which is inside it). So nothing counts as scattered at t = 0, and every grain that
 // psi0 is computed from has turned: its velocity has left the incident -e_z.
 TEST(NarrowTarget, F4_2_JetWiderThanTheTargetIsMeasuredOnTurnedGrainsOnly) {
-  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
-                                 {"jet.diameter=4.5", "wall.diameter=2.25", "jet.grains=600",
-                                  "run.t_end=12", "analysis.window_start=6",
-                                  "analysis.window_end=12"});
+  const Scene scene =
+      load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
+                 {"jet.diameter=4.5", "wall.diameter=2.25", "jet.grains=600", "run.t_end=12",
+                  "analysis.window_start=6", "analysis.window_end=12"});
   const analysis::AnalysisConfig config = analysis::AnalysisConfig::for_scene(scene);
   EXPECT_DOUBLE_EQ(config.scatter_radius, 2.25 + 1.0);
   for (const std::string backend : {"soft_dem", "event_driven"}) {

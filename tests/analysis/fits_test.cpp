@@ -1,7 +1,6 @@
 // The fits recover the parameters of noisy synthetic data within their error bars, and the error
 // bars are calibrated (about 68% of repeated fits lie within one standard error).
 #include "analysis/fits.hpp"
-#include "analysis/line_fit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +9,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include "analysis/line_fit.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -76,8 +77,8 @@ TEST(Fits, Eq6_9_SaturatingFrictionRecovered) {
 // beta. Exact data give them back to rounding (the standard errors, s^2 from SSR ~ 0, vanish
 // with it); noisy data within 3 standard errors.
 TEST(Fits, Eq6_10_PowerFrictionWithMuSZeroHasTwoParameters) {
-  const auto exact = make_data([](double i) { return friction_power(i, 0.0, 0.6, 0.7); }, 0.01,
-                               1.0, 40, 0.0, 14);
+  const auto exact =
+      make_data([](double i) { return friction_power(i, 0.0, 0.6, 0.7); }, 0.01, 1.0, 40, 0.0, 14);
   const FitResult fit = fit_mu_power(exact.x, exact.y);
   EXPECT_EQ(fit.law, "6.10");
   ASSERT_EQ(fit.parameters, (std::vector<std::string>{"b", "beta"}));
@@ -90,8 +91,8 @@ TEST(Fits, Eq6_10_PowerFrictionWithMuSZeroHasTwoParameters) {
     EXPECT_TRUE(std::isfinite(fit.error_of(name)));
     EXPECT_LT(fit.error_of(name), 1e-8);
   }
-  const auto noisy = make_data([](double i) { return friction_power(i, 0.0, 0.6, 0.7); }, 0.01,
-                               1.0, 40, 0.005, 14);
+  const auto noisy = make_data([](double i) { return friction_power(i, 0.0, 0.6, 0.7); }, 0.01, 1.0,
+                               40, 0.005, 14);
   expect_recovered(fit_mu_power(noisy.x, noisy.y), {0.6, 0.7});
 }
 

@@ -19,7 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Grains 0..5; grain 2 leaves after frame 0, grain 4 after frame 1.
-const std::vector<std::vector<GrainId>> kFrames = {{5, 0, 2, 4, 1, 3}, {0, 1, 3, 4, 5}, {3, 5, 0, 1}};
+const std::vector<std::vector<GrainId>> kFrames = {
+    {5, 0, 2, 4, 1, 3}, {0, 1, 3, 4, 5}, {3, 5, 0, 1}};
 constexpr std::size_t kRows = 6;
 
 Vec<3> position_of(GrainId id, int frame) { return Vec<3>(id, 0.5 * frame, -1.0 * id); }
@@ -41,7 +42,8 @@ ForceSample<3> forces_of(int frame, const Particles<3>& p) {
   for (std::size_t k = 0; k < p.size(); ++k) f.total[k] = Vec<3>(p.id()[k], 1.0, 2.0);
   const int pairs = frame == 2 ? 0 : frame + 1;
   for (int c = 0; c < pairs; ++c)
-    f.contacts.push_back({p.id()[c], p.id()[c + 1], Vec<3>(0, 0, c + 1.0), Vec<3>(0.5, 0, 0), 0.01 * (c + 1)});
+    f.contacts.push_back(
+        {p.id()[c], p.id()[c + 1], Vec<3>(0, 0, c + 1.0), Vec<3>(0.5, 0, 0), 0.01 * (c + 1)});
   f.contacts.push_back({p.id()[0], kPlateId, Vec<3>(0, 0, 9.0), Vec<3>::Zero(), 0.02});
   return f;
 }
@@ -71,8 +73,8 @@ class H5File {
     for (hsize_t d : shape(name)) n *= d;
     std::vector<T> out(n);
     const hid_t set = H5Dopen2(id_, name.c_str(), H5P_DEFAULT);
-    H5Dread(set, std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, H5S_ALL,
-            H5S_ALL, H5P_DEFAULT, out.data());
+    H5Dread(set, std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, H5S_ALL, H5S_ALL,
+            H5P_DEFAULT, out.data());
     H5Dclose(set);
     return out;
   }
@@ -214,7 +216,8 @@ TEST_F(H5mdLayout, DtIsTheFrameIntervalAndAPeriodicBoxHasEdges) {
 TEST_F(H5mdLayout, OmegaForceAndContactsAreStoredOnlyWhenAskedFor) {
   {
     const H5File f(write(metadata()));
-    for (const char* absent : {"/particles/all/omega", "/particles/all/force", "/connectivity", "/contacts"})
+    for (const char* absent :
+         {"/particles/all/omega", "/particles/all/force", "/connectivity", "/contacts"})
       EXPECT_FALSE(f.exists(absent)) << absent;
   }
   fs::remove(dir_ / "run.h5");

@@ -78,10 +78,10 @@ TEST(HeightOrigin, Spec6_GrainLandsInTheLayerOfItsHeightUnderEachOrigin) {
   EXPECT_EQ(AnalysisConfig::for_scene(Scene{}).bins.height_origin, 0.0);
   // 2D, layers (a) 0 < h <= 5 and (b) 5 < h <= 10; y = 1 is in lateral bin 5 of 10.
   const Scene s2 = jet_scene(2, 66.0, 0.0);
-  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {5.3, 1.0}), 15);  // h = 5.3: layer (b)
-  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {5.3, 1.0}), 5);   // h = 4.8: layer (a)
-  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {0.3, 1.0}), 5);   // h = 0.3: layer (a)
-  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {0.3, 1.0}), -1);  // below the surface
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {5.3, 1.0}), 15);   // h = 5.3: layer (b)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {5.3, 1.0}), 5);    // h = 4.8: layer (a)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {0.3, 1.0}), 5);    // h = 0.3: layer (a)
+  EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {0.3, 1.0}), -1);   // below the surface
   EXPECT_EQ(bin_of<2>(with_origin(s2, kSurface), {10.3, 1.0}), 15);  // h = 9.8: layer (b)
   EXPECT_EQ(bin_of<2>(with_origin(s2, kCentres), {10.3, 1.0}), -1);  // above the mesh
   // 3D, one layer 0 < h <= 5; r = 1 is in the inner ring.

@@ -145,8 +145,8 @@ TEST(VelocityDistribution, FlatnessPerBinAndPerRegionOfTwoGaussianBins) {
   const double s1 = 1.0, s2 = 9.0;
   const double mixture = 3.0 * (s1 * s1 + s2 * s2) / 2.0 / std::pow((s1 + s2) / 2.0, 2);
   EXPECT_NEAR(mixture, 4.92, 1e-12);
-  EXPECT_NEAR(vdf.flatness(0), 3.0, 0.01);              // each bin's own T_a
-  EXPECT_NEAR(vdf.flatness_region(0), mixture, 0.01);  // one T_a for both bins
+  EXPECT_NEAR(vdf.flatness(0), 3.0, 0.01);                              // each bin's own T_a
+  EXPECT_NEAR(vdf.flatness_region(0), mixture, 0.01);                   // one T_a for both bins
   for (int bin : {0, 1}) EXPECT_NEAR(vdf.flatness(0, bin), 3.0, 0.01);  // per-bin field
   EXPECT_TRUE(std::isnan(vdf.flatness_region(1)));  // no spread: nothing to scale
   // Equal temperatures: the two scalings agree.

@@ -22,7 +22,8 @@ nlohmann::json read_json(const fs::path& file) {
 }
 
 int run(const std::string& args) {
-  return WEXITSTATUS(std::system((std::string(GRANJET_BINARY) + " " + args + " > /dev/null").c_str()));
+  return WEXITSTATUS(
+      std::system((std::string(GRANJET_BINARY) + " " + args + " > /dev/null").c_str()));
 }
 
 TEST(AnalysisCommand, InlineFieldsAndStoredFrameAnalysisAgreeOnKineticFields) {

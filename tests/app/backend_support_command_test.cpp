@@ -29,10 +29,10 @@ Scene stored_scene(const std::string& ini) {
 }
 
 TEST_F(BackendSupportCommand, EventDrivenRunStoresTheSceneItRanBesideTheRequestedOne) {
-  ASSERT_EQ(granjet("run " + scene("jet3d.ini") + " --backend event_driven" + kSmallJet +
-                    " --out " + (dir_ / "ed.h5").string() + " --summary " +
-                    (dir_ / "ed.json").string()),
-            0)
+  ASSERT_EQ(
+      granjet("run " + scene("jet3d.ini") + " --backend event_driven" + kSmallJet + " --out " +
+              (dir_ / "ed.h5").string() + " --summary " + (dir_ / "ed.json").string()),
+      0)
       << err_;
   // One note per adaptation, on stderr and in the log.
   EXPECT_NE(err_.find("granjet: event_driven: wall.kind = tethered becomes fixed ("),
@@ -65,16 +65,17 @@ TEST_F(BackendSupportCommand, EventDrivenRunStoresTheSceneItRanBesideTheRequeste
   // same frames bit for bit.
   ASSERT_EQ(granjet("info " + (dir_ / "ed.h5").string() + " --scene"), 0) << err_;
   fs::copy_file(dir_ / "stdout.txt", dir_ / "ran.ini");
-  ASSERT_EQ(granjet("run " + (dir_ / "ran.ini").string() + " --backend event_driven --quiet --out " +
-                    (dir_ / "again.h5").string() + " --summary " + (dir_ / "again.json").string()),
-            0)
+  ASSERT_EQ(
+      granjet("run " + (dir_ / "ran.ini").string() + " --backend event_driven --quiet --out " +
+              (dir_ / "again.h5").string() + " --summary " + (dir_ / "again.json").string()),
+      0)
       << err_;
   EXPECT_EQ(err_.find("becomes"), std::string::npos) << err_;
   EXPECT_FALSE(summary("again.json").contains("adaptations"));
   EXPECT_TRUE(analysis::read_summary(dir_ / "again.h5").requested_scene_ini.empty());
   for (const char* group : {"/particles", "/observables", "/fields", "/analysis"}) {
-    const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (dir_ / "ed.h5").string() +
-                            " " + (dir_ / "again.h5").string() + " " + group + " " + group;
+    const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (dir_ / "ed.h5").string() + " " +
+                            (dir_ / "again.h5").string() + " " + group + " " + group;
     EXPECT_EQ(std::system(cmd.c_str()), 0) << group;
   }
 }

@@ -84,9 +84,9 @@ TEST(BackendSupport, RefusalsNameTheKeyAndSayWhy) {
       "event_driven", shipped("jet3d.ini", {"output.fields=position,velocity,radius,id,force"}));
   EXPECT_EQ(forces, "output.fields");
   EXPECT_NE(forces_why.find("impulses only"), std::string::npos) << forces_why;
-  const auto [both, both_why] = refusal(
-      "event_driven",
-      shipped("jet3d.ini", {"output.fields=position,velocity,radius,id,contacts,omega"}));
+  const auto [both, both_why] =
+      refusal("event_driven",
+              shipped("jet3d.ini", {"output.fields=position,velocity,radius,id,contacts,omega"}));
   EXPECT_EQ(both, "output.fields");
   EXPECT_NE(both_why.find("impulses only"), std::string::npos) << both_why;  // every reason
   EXPECT_NE(both_why.find("smooth hard spheres"), std::string::npos) << both_why;
@@ -112,13 +112,16 @@ TEST(BackendSupport, BackendsDeclareWhatTheyCount) {
 // requested (a tethered target); the campaign now plans the resolved one (fixed) and still
 // finds that run complete.
 TEST(BackendSupport, CampaignFindsRunsThatStoredTheRequestedScene) {
-  const fs::path dir = fs::temp_directory_path() / ("granjet_support_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("granjet_support_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  std::istringstream text("[campaign]\nseeds = 1\n[hard]\nresults = HC\nscene = jet2d.ini\n"
-                          "backend = event_driven\njet.grains = 50\n");
+  std::istringstream text(
+      "[campaign]\nseeds = 1\n[hard]\nresults = HC\nscene = jet2d.ini\n"
+      "backend = event_driven\njet.grains = 50\n");
   PlanOptions options;
   options.out_dir = dir;
-  const CampaignPlan plan = plan_campaign(parse_campaign(text, "test.ini", GRANJET_SCENES_DIR), options);
+  const CampaignPlan plan =
+      plan_campaign(parse_campaign(text, "test.ini", GRANJET_SCENES_DIR), options);
   ASSERT_EQ(plan.runs.size(), 1u);
   const PlannedRun& run = plan.runs.front();
   EXPECT_EQ(run.scene.wall.kind, WallKind::kFixed);

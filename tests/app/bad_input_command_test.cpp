@@ -142,8 +142,8 @@ TEST_F(BadInput, OutputFieldsTheBackendCannotGiveAreRefused) {
 
 // Valid runs that measure nothing used to end "complete" without a word.
 TEST_F(BadInput, RunsThatMeasureNothingWarn) {
-  const std::string out = " --quiet --out " + (dir_ / "w.h5").string() + " --summary " +
-                          (dir_ / "w.json").string();
+  const std::string out =
+      " --quiet --out " + (dir_ / "w.h5").string() + " --summary " + (dir_ / "w.json").string();
   for (const auto& [set, warning] :
        {std::pair{"run.t_end=0.001", "shorter than one time step"},
         std::pair{"run.t_end=1", "ends before the analysis window"},
@@ -180,16 +180,17 @@ TEST_F(BadInput, AnalyzeRefusesFramesWithImpossibleGrains) {
     const char* message;
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const Damage& d : {Damage{"id", 1, 0.0, 0.5, "holds grain id 2"},
-                          Damage{"nan", 1, nan, 0.5, "not finite"},
-                          Damage{"inf", 1, std::numeric_limits<double>::infinity(), 0.5, "not finite"},
-                          Damage{"radius", 1, 0.0, -0.5, "radius"}}) {
+  for (const Damage& d :
+       {Damage{"id", 1, 0.0, 0.5, "holds grain id 2"}, Damage{"nan", 1, nan, 0.5, "not finite"},
+        Damage{"inf", 1, std::numeric_limits<double>::infinity(), 0.5, "not finite"},
+        Damage{"radius", 1, 0.0, -0.5, "radius"}}) {
     const fs::path file = dir_ / (std::string(d.name) + ".h5");
     analysis::RunMetadata meta;
     meta.backend = "soft_dem";
     meta.dimension = 2;
-    meta.scene_ini = "[scene]\nkind = jet\ndimension = 2\n[output]\ninterval = 1\n"
-                     "[analysis]\nwindow_start = 0\nwindow_end = 2\n";
+    meta.scene_ini =
+        "[scene]\nkind = jet\ndimension = 2\n[output]\ninterval = 1\n"
+        "[analysis]\nwindow_start = 0\nwindow_end = 2\n";
     {
       analysis::H5mdWriter<2> writer(file, meta, 3);
       for (int frame = 0; frame < 3; ++frame) {

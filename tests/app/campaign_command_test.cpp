@@ -134,7 +134,8 @@ TEST_F(CampaignCommand, KilledCampaignRerunFinishesOnlyTheRestWithTheSameFiles) 
   ASSERT_LT(complete, 10) << "the campaign ended before it could be killed";
   std::size_t done_before = 0;
   const nlohmann::json at_kill = manifest(killed);
-  for (const auto& [name, run] : at_kill["runs"].items()) done_before += run["status"] == "complete";
+  for (const auto& [name, run] : at_kill["runs"].items())
+    done_before += run["status"] == "complete";
 
   ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --jobs 1 --out " + killed.string()), 0)
       << err_;
@@ -206,9 +207,9 @@ TEST_F(CampaignCommand, ThesisDryRunListsEveryResultOfTheSpecWithItsRunsAndCost)
   s << in.rdbuf();
   const std::string listing = s.str();
   // spec §7, every id.
-  for (const char* id : {"T4.1", "F4.2", "F4.3", "F5.3", "F5.4", "F5.5", "F5.6", "T5.1", "F5.7",
-                         "T5.2", "F5.9", "F6.3", "F6.4", "F6.5", "F6.7", "F6.11-F6.14",
-                         "F6.16-F6.18", "FE.1", "HC"}) {
+  for (const char* id :
+       {"T4.1", "F4.2", "F4.3", "F5.3", "F5.4", "F5.5", "F5.6", "T5.1", "F5.7", "T5.2", "F5.9",
+        "F6.3", "F6.4", "F6.5", "F6.7", "F6.11-F6.14", "F6.16-F6.18", "FE.1", "HC"}) {
     // The id's row: its groups, a run count and a cost.
     std::string pattern = "\n";
     for (const char* c = id; *c; ++c)

@@ -10,9 +10,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <thread>
 #include <utility>
 #include <vector>
-#include <thread>
 
 #include "analysis/h5md_reader.hpp"
 #include "command_fixture.hpp"
@@ -64,8 +64,8 @@ class Resume : public testing::CommandTest {
   }
 
   static nlohmann::json without_timings(nlohmann::json j) {
-    for (const char* key : {"wall_seconds", "particle_steps_per_second", "collisions_per_second",
-                            "output"})
+    for (const char* key :
+         {"wall_seconds", "particle_steps_per_second", "collisions_per_second", "output"})
       j.erase(key);
     if (j.contains("analysis")) j["analysis"].erase("seconds");
     return j;
@@ -136,14 +136,13 @@ TEST_F(Resume, SignalsCheckpointAndExitWithTheirCode) {
   const std::string base = "run " + scene("jet3d.ini") +
                            " --quiet --set jet.grains=6000 --set run.t_end=30"
                            " --set run.checkpoint_interval=2 --set analysis.enabled=false";
-  for (const auto& [signals, code] :
-       std::vector<std::pair<std::vector<int>, int>>{{{SIGINT}, 130},
-                                                    {{SIGTERM}, 143},
-                                                    {{SIGHUP}, 129},
-                                                    {{SIGTERM, SIGTERM}, 143}}) {
+  for (const auto& [signals, code] : std::vector<std::pair<std::vector<int>, int>>{
+           {{SIGINT}, 130}, {{SIGTERM}, 143}, {{SIGHUP}, 129}, {{SIGTERM, SIGTERM}, 143}}) {
     // append(), not "literal" + string: GCC 12 reports a false -Wrestrict for the latter.
-    const std::string name =
-        std::string("s").append(std::to_string(code)).append("_").append(std::to_string(signals.size()));
+    const std::string name = std::string("s")
+                                 .append(std::to_string(code))
+                                 .append("_")
+                                 .append(std::to_string(signals.size()));
     const fs::path partial = dir_ / (name + ".h5.partial");
     const int status = run_and_signal(base + " --out " + (dir_ / (name + ".h5")).string() +
                                           " --summary " + (dir_ / (name + ".json")).string(),

@@ -42,13 +42,17 @@ TEST(RunBudget, MemoryIsEstimatedFromTheGrainsAndNamesTheirKey) {
   const Scene jet = load_scene(kScenes + "/jet3d.ini", {});
   EXPECT_NEAR(estimated_grains(jet), 20000 + 439, 10);
   expect_refused("jet3d.ini", {}, "soft_dem", "jet.grains", "GB; this machine has", 1e7);
-  expect_refused("jet3d.ini", {"jet.grains=100000000"}, "soft_dem", "jet.grains", "grains would need");
-  expect_refused("jet3d.ini", {"wall.diameter=100000"}, "soft_dem", "wall.diameter", "grains would need");
-  expect_refused("gas3d.ini", {"gas.grains=100000000"}, "event_driven", "gas.grains", "grains would need");
+  expect_refused("jet3d.ini", {"jet.grains=100000000"}, "soft_dem", "jet.grains",
+                 "grains would need");
+  expect_refused("jet3d.ini", {"wall.diameter=100000"}, "soft_dem", "wall.diameter",
+                 "grains would need");
+  expect_refused("gas3d.ini", {"gas.grains=100000000"}, "event_driven", "gas.grains",
+                 "grains would need");
 }
 
 TEST(RunBudget, ValuesThatHungAreRefusedWithTheirCount) {
-  expect_refused("jet3d.ini", {"jet.phi_tilde=1e-308"}, "soft_dem", "jet.phi_tilde", "lattice sites");
+  expect_refused("jet3d.ini", {"jet.phi_tilde=1e-308"}, "soft_dem", "jet.phi_tilde",
+                 "lattice sites");
   expect_refused("jet3d.ini", {"jet.spacing=1e308"}, "soft_dem", "jet.spacing", "length");
   expect_refused("jet3d.ini", {"jet.gap=1e308"}, "soft_dem", "jet.gap", "at most 1e+07 d");
   expect_refused("binary.ini", {"binary.gap=1e9"}, "event_driven", "binary.gap", "at most 1e+07 d");

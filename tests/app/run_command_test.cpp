@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <vector>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "analysis/field_reader.hpp"
 #include "analysis/h5md_reader.hpp"
@@ -41,8 +41,9 @@ TEST_F(GranjetCommand, BinarySceneReportsMeasuredRestitutionAndContactTime) {
 }
 
 TEST_F(GranjetCommand, SameSceneAndSeedGiveBitIdenticalFrames) {
-  const std::string args = "run " + scene("jet3d.ini") +
-                           " --quiet --set jet.grains=400 --set run.t_end=4 --set output.interval=2";
+  const std::string args =
+      "run " + scene("jet3d.ini") +
+      " --quiet --set jet.grains=400 --set run.t_end=4 --set output.interval=2";
   ASSERT_EQ(granjet(args + " --out " + (dir_ / "a.h5").string()), 0) << err_;
   ASSERT_EQ(granjet(args + " --out " + (dir_ / "b.h5").string()), 0) << err_;
   ASSERT_EQ(granjet(args + " --set run.seed=2 --out " + (dir_ / "c.h5").string()), 0) << err_;
@@ -60,8 +61,8 @@ TEST_F(GranjetCommand, AnalysisWindowThatNeverStartsSaysSoAndWritesNoFields) {
   const fs::path out = dir_ / "early.h5", summary = dir_ / "early.json";
   ASSERT_EQ(granjet("run " + scene("jet3d.ini") +
                     " --quiet --set jet.grains=300 --set run.t_end=4 --set analysis.window_start=8"
-                    " --set analysis.window_end=16 --out " + out.string() + " --summary " +
-                    summary.string()),
+                    " --set analysis.window_end=16 --out " +
+                    out.string() + " --summary " + summary.string()),
             0)
       << err_;
   EXPECT_NE(err_.find("ends before the analysis window 8..16 starts"), std::string::npos) << err_;
@@ -74,11 +75,10 @@ TEST_F(GranjetCommand, AnalysisWindowThatNeverStartsSaysSoAndWritesNoFields) {
 
 TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
   const fs::path out = dir_ / "bad.h5";
-  for (const std::string set : {"contact.restitution=1.5", "contact.contact_time=0",
-                                 "contact.friction=-1", "run.dt=0.1", "jet.phi_tilde=2",
-                                 "jet.colour=red", "run.threads=0"}) {
-    EXPECT_EQ(granjet("run " + scene("jet3d.ini") + " --set " + set + " --out " + out.string()),
-              2);
+  for (const std::string set :
+       {"contact.restitution=1.5", "contact.contact_time=0", "contact.friction=-1", "run.dt=0.1",
+        "jet.phi_tilde=2", "jet.colour=red", "run.threads=0"}) {
+    EXPECT_EQ(granjet("run " + scene("jet3d.ini") + " --set " + set + " --out " + out.string()), 2);
     EXPECT_NE(err_.find(set.substr(0, set.find('='))), std::string::npos) << err_;
     EXPECT_FALSE(fs::exists(out));
     EXPECT_FALSE(fs::exists(out.string() + ".partial"));
@@ -103,9 +103,8 @@ TEST_F(GranjetCommand, VersionNamesTheCommit) {
 // A step coarser than 0.05 t_c runs, but says what it costs (no blow-up would tell).
 TEST_F(GranjetCommand, CoarseStepRunsWithANoteNamingItsCost) {
   const fs::path out = dir_ / "coarse.h5";
-  EXPECT_EQ(granjet("run " + scene("binary.ini") + " --quiet --set run.dt=0.01 --out " +
-                    out.string()),
-            0)
+  EXPECT_EQ(
+      granjet("run " + scene("binary.ini") + " --quiet --set run.dt=0.01 --out " + out.string()), 0)
       << err_;
   EXPECT_NE(err_.find("run.dt = 0.1 t_c"), std::string::npos) << err_;
   EXPECT_EQ(granjet("run " + scene("binary.ini") + " --quiet --out " + out.string()), 0);
@@ -117,7 +116,8 @@ TEST_F(GranjetCommand, BlowUpStopsWithStepAndGrainsAndKeepsAReadablePartialFile)
   const fs::path out = dir_ / "blow.h5";
   EXPECT_EQ(granjet("run " + scene("jet3d.ini") +
                     " --quiet --set jet.grains=300 --set run.t_end=20 --set run.dt=0.09"
-                    " --set output.interval=0.9 --out " + out.string()),
+                    " --set output.interval=0.9 --out " +
+                    out.string()),
             3);
   EXPECT_NE(err_.find("blow-up at step"), std::string::npos) << err_;
   EXPECT_NE(err_.find("grains"), std::string::npos) << err_;
@@ -147,11 +147,11 @@ TEST_F(GranjetCommand, SubcommandHelpProgressColumnsAndAuthor) {
   std::ifstream in(dir_ / "stdout.txt");
   const std::string printed{std::istreambuf_iterator<char>(in), {}};
   const std::vector<std::string> words = {"writing " + out.string(), "step", "E_kin", "E_diss",
-                                         "wrote " + out.string()};
+                                          "wrote " + out.string()};
   for (const std::string& word : words)
     EXPECT_NE(printed.find(word), std::string::npos) << word << " in\n" << printed;
-  const std::string h5dump = "h5dump -a /h5md/author/name " + out.string() + " > " +
-                             (dir_ / "author.txt").string();
+  const std::string h5dump =
+      "h5dump -a /h5md/author/name " + out.string() + " > " + (dir_ / "author.txt").string();
   ASSERT_EQ(std::system(h5dump.c_str()), 0);
   std::ifstream author(dir_ / "author.txt");
   EXPECT_NE(std::string(std::istreambuf_iterator<char>(author), {}).find("A. Physicist"),

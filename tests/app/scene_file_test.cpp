@@ -3,7 +3,6 @@
 #include "app/scene_file.hpp"
 
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -93,8 +92,8 @@ TEST(SceneFile, WallLatticeAndScatterRadiusKeysRoundTrip) {
                               "analysis.scatter_radius=30", "contact.clamp_normal=true"});
   EXPECT_EQ(s.wall.lattice, WallLattice::kSquare);
   const std::string ini = scene_to_ini(s);
-  for (const char* line : {"lattice = square", "spacing = 1.5", "jitter = 0.125", "scatter_radius = 30",
-                           "clamp_normal = true"})
+  for (const char* line : {"lattice = square", "spacing = 1.5", "jitter = 0.125",
+                           "scatter_radius = 30", "clamp_normal = true"})
     EXPECT_NE(ini.find(line), std::string::npos) << line;
   EXPECT_EQ(scene_to_ini(reparsed(ini)), ini);
 }
@@ -163,8 +162,8 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
 TEST(SceneFile, OutputFieldsListTheOptionalPerGrainData) {
   const Scene plain = load_scene(kScenes + "/jet3d.ini", {});
   EXPECT_FALSE(plain.output.omega || plain.output.force || plain.output.contacts);
-  const Scene chains =
-      load_scene(kScenes + "/jet3d.ini", {"output.fields= id, position,velocity , radius,contacts"});
+  const Scene chains = load_scene(kScenes + "/jet3d.ini",
+                                  {"output.fields= id, position,velocity , radius,contacts"});
   EXPECT_TRUE(chains.output.contacts);
   EXPECT_FALSE(chains.output.omega || chains.output.force);
   const Scene again = reparsed(scene_to_ini(chains));
@@ -196,8 +195,9 @@ TEST(SceneFile, UnknownKeyInFileAndMissingFileAreRefused) {
 
 // The last of two assignments no longer silently wins: both lines are named.
 TEST(SceneFile, DuplicateKeyIsRefusedNamingBothLines) {
-  std::istringstream in("[scene]\nkind = jet\n[contact]\nrestitution = 0.8\n# e\n"
-                        "restitution = 0.9\n");
+  std::istringstream in(
+      "[scene]\nkind = jet\n[contact]\nrestitution = 0.8\n# e\n"
+      "restitution = 0.9\n");
   try {
     parse_scene(in, "twice.ini", {});
     ADD_FAILURE() << "a duplicate key was accepted";

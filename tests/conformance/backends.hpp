@@ -29,8 +29,7 @@ struct EventDrivenBackend {
   static constexpr double kRestitutionTolerance = 4e-16;  // a few roundings
   template <int D>
   static std::unique_ptr<Simulator<D>> make(const Scene& scene, Particles<D> grains) {
-    return std::make_unique<ed::EdSimulator<D>>(scene, std::move(grains),
-                                                ed::Verification::kOn);
+    return std::make_unique<ed::EdSimulator<D>>(scene, std::move(grains), ed::Verification::kOn);
   }
 };
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "analysis/analysis_json.hpp"
-#include "app/backend_factory.hpp"
 #include "analysis/gas_observer.hpp"
 #include "analysis/inline_analysis.hpp"
+#include "app/backend_factory.hpp"
 #include "app/scene_file.hpp"
 
 namespace granjet {
@@ -119,12 +119,18 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         Case{"dem_jet3d_ab2_friction_tethered", "jet3d.ini", "soft_dem", {}},
         Case{"dem_jet3d_verlet", "jet3d.ini", "soft_dem", {"run.integrator=verlet"}},
-        Case{"dem_jet3d_frictionless_fixed", "jet3d.ini", "soft_dem",
+        Case{"dem_jet3d_frictionless_fixed",
+             "jet3d.ini",
+             "soft_dem",
              {"contact.friction=0", "wall.kind=fixed"}},
-        Case{"dem_jet3d_plate_threads2", "jet3d.ini", "soft_dem",
+        Case{"dem_jet3d_plate_threads2",
+             "jet3d.ini",
+             "soft_dem",
              {"wall.kind=plate", "run.threads=2"}},
         Case{"dem_jet2d_bidisperse", "jet2d.ini", "soft_dem", {}},
-        Case{"dem_jet3d_hertz_plate", "jet3d.ini", "soft_dem",
+        Case{"dem_jet3d_hertz_plate",
+             "jet3d.ini",
+             "soft_dem",
              {"contact.model=hertz", "wall.kind=plate"}},
         Case{"dem_gas3d_periodic", "hcs3d.ini", "soft_dem", {}},
         Case{"ed_jet3d", "jet3d.ini", "event_driven", {}},
@@ -182,9 +188,9 @@ TEST(CheckpointAnalysis, ResumedInlineAnalysisIsBitIdentical) {
 
 // The gas observer's sums (temperature, virial, the cooling fits) likewise.
 TEST(CheckpointAnalysis, ResumedGasObserverIsBitIdentical) {
-  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/hcs3d.ini",
-                                 {"gas.grains=500", "run.t_end=4", "gas.equilibration=1",
-                                  "gas.sample_interval=0.1"});
+  const Scene scene = load_scene(
+      std::string(GRANJET_SCENES_DIR) + "/hcs3d.ini",
+      {"gas.grains=500", "run.t_end=4", "gas.equilibration=1", "gas.sample_interval=0.1"});
   const auto run = [&](Simulator<3>& sim, analysis::GasObserver<3>& gas, double t_end) {
     while (sim.time() < t_end - 1e-9) {
       sim.advance_to(std::min(t_end, gas.next_time(sim)));

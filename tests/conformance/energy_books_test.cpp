@@ -35,8 +35,7 @@ TYPED_TEST(EnergyBooksConformance, GrainsRemovedAtTheStartCountInTheInitialTotal
   sim->advance_to(2.0);
   const EnergyBalance e = sim->energy();
   EXPECT_GT(e.removed, 0.1 * start);
-  EXPECT_NEAR(e.kinetic + e.rotational + e.elastic + e.removed + e.dissipated, start,
-              1e-9 * start);
+  EXPECT_NEAR(e.kinetic + e.rotational + e.elastic + e.removed + e.dissipated, start, 1e-9 * start);
   EXPECT_GE(e.dissipated, -1e-9 * start);
 }
 

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "backends.hpp"
 #include "../common/lattice_cluster.hpp"
+#include "backends.hpp"
 
 namespace granjet {
 namespace {

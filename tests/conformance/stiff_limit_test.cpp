@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "app/backend_factory.hpp"
 #include "analysis/gas_observer.hpp"
+#include "app/backend_factory.hpp"
 
 namespace granjet {
 namespace {

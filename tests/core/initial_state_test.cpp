@@ -25,8 +25,8 @@ double min_distance_ratio(const Particles<D>& p, bool jet_only = false) {
     for (std::size_t j = i + 1; j < p.size(); ++j) {
       if (jet_only && (p.kind()[i] != GrainKind::kFree || p.kind()[j] != GrainKind::kFree))
         continue;
-      worst = std::min(worst, (p.position()[i] - p.position()[j]).norm() /
-                                  (p.radius()[i] + p.radius()[j]));
+      worst = std::min(
+          worst, (p.position()[i] - p.position()[j]).norm() / (p.radius()[i] + p.radius()[j]));
     }
   return worst;
 }

@@ -35,7 +35,8 @@ TYPED_TEST(NeighbourList, HalfListMatchesBruteForce) {
     sorted_r.push_back(radius[k]);
   }
   PairList list;
-  build_half_pairs<D>(grid, sorted, sorted_r, skin, [](auto, auto) { return false; }, list);
+  build_half_pairs<D>(
+      grid, sorted, sorted_r, skin, [](auto, auto) { return false; }, list);
   std::set<std::pair<std::uint32_t, std::uint32_t>> found, expected;
   for (std::uint32_t i = 0; i < sorted.size(); ++i)
     for (std::uint32_t k = list.first[i]; k < list.first[i + 1]; ++k) {
@@ -68,7 +69,8 @@ TYPED_TEST(NeighbourList, PeriodicHalfListMatchesMinimumImageBruteForce) {
   std::vector<Vec<D>> sorted;
   for (std::uint32_t k : grid.order()) sorted.push_back(x[k]);
   PairList list;
-  build_half_pairs<D>(grid, sorted, radius, skin, [](auto, auto) { return false; }, list, space);
+  build_half_pairs<D>(
+      grid, sorted, radius, skin, [](auto, auto) { return false; }, list, space);
   std::multiset<std::pair<std::uint32_t, std::uint32_t>> found;
   std::set<std::pair<std::uint32_t, std::uint32_t>> expected;
   for (std::uint32_t i = 0; i < sorted.size(); ++i)
@@ -113,8 +115,10 @@ TYPED_TEST(NeighbourList, ThreadedBuildEqualsSerialBuild) {
   const auto none = [](auto, auto) { return false; };
   for (bool periodic : {false, true}) {
     CellGrid<D> grid;
-    if (periodic) grid.build_periodic(x, space.box, 1.3);
-    else grid.build(x, 1.3);
+    if (periodic)
+      grid.build_periodic(x, space.box, 1.3);
+    else
+      grid.build(x, 1.3);
     std::vector<Vec<D>> sorted;
     for (std::uint32_t k : grid.order()) sorted.push_back(x[k]);
     PairList one, three;

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "../app/command_fixture.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/kinetic_theory.hpp"
-#include "../app/command_fixture.hpp"
 
 namespace granjet {
 namespace {
@@ -22,8 +22,8 @@ TEST_F(EventDrivenCommand, JetsRunOnTheSameSceneFilesAndReportEventCounts) {
     SCOPED_TRACE(jet);
     ASSERT_EQ(granjet("run " + scene(jet) +
                       " --backend event_driven --quiet --set jet.grains=500 --set run.t_end=15"
-                      " --set output.interval=5 --out " + (dir_ / "jet.h5").string() +
-                      " --summary " + (dir_ / "jet.json").string()),
+                      " --set output.interval=5 --out " +
+                      (dir_ / "jet.h5").string() + " --summary " + (dir_ / "jet.json").string()),
               0)
         << err_;
     // One note says what the backend made of the scene.
@@ -83,16 +83,16 @@ TEST_F(EventDrivenCommand, SameSceneAndSeedGiveBitIdenticalFrames) {
 TEST_F(EventDrivenCommand, GasScenesReportCompressibilityAndCoolingBesideTheory) {
   ASSERT_EQ(granjet("run " + scene("gas3d.ini") +
                     " --backend event_driven --quiet --set gas.grains=2048 --set run.t_end=15"
-                    " --out " + (dir_ / "gas.h5").string() + " --summary " +
-                    (dir_ / "gas.json").string()),
+                    " --out " +
+                    (dir_ / "gas.h5").string() + " --summary " + (dir_ / "gas.json").string()),
             0)
       << err_;
   nlohmann::json j = summary("gas.json");
   EXPECT_DOUBLE_EQ(j["theory"]["compressibility"].get<double>(),
                    analysis::kinetic::carnahan_starling(0.3));
-  EXPECT_NEAR(j["measured"]["compressibility"].get<double>() /
-                  j["theory"]["compressibility"].get<double>(),
-              1.0, 0.015);
+  EXPECT_NEAR(
+      j["measured"]["compressibility"].get<double>() / j["theory"]["compressibility"].get<double>(),
+      1.0, 0.015);
   EXPECT_NEAR(j["measured"]["temperature"].get<double>(), 1.0, 1e-12);  // elastic: kept
 
   ASSERT_EQ(granjet("run " + scene("hcs2d.ini") + " --backend event_driven --quiet --out " +
@@ -144,7 +144,8 @@ TEST_F(EventDrivenCommand, InelasticCollapseExitsThreeNamingGrainsAndTheRemedy) 
   EXPECT_EQ(granjet("run " + scene("hcs2d.ini") +
                     " --backend event_driven --quiet --set contact.restitution=0.5"
                     " --set gas.phi=0.6 --set gas.grains=1000 --set run.t_end=200"
-                    " --set output.interval=50 --out " + out.string()),
+                    " --set output.interval=50 --out " +
+                    out.string()),
             3);
   EXPECT_NE(err_.find("inelastic collapse"), std::string::npos) << err_;
   EXPECT_NE(err_.find("velocity_dependent"), std::string::npos) << err_;
@@ -156,8 +157,8 @@ TEST_F(EventDrivenCommand, CompareRunsBothBackendsAndWritesThemSideBySide) {
   const fs::path out = dir_ / "cmp";
   ASSERT_EQ(granjet("compare " + scene("binary.ini") + " --quiet --out " + out.string()), 0)
       << err_;
-  for (const std::string file : {"soft_dem.h5", "soft_dem.json", "event_driven.h5",
-                                 "event_driven.json", "compare.json"})
+  for (const std::string file :
+       {"soft_dem.h5", "soft_dem.json", "event_driven.h5", "event_driven.json", "compare.json"})
     EXPECT_TRUE(fs::exists(out / file)) << file;
   std::ifstream in(out / "compare.json");
   const nlohmann::json j = nlohmann::json::parse(in);

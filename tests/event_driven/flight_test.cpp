@@ -23,9 +23,9 @@ TEST(ContactDelay, HeadOnApproachTouchesAfterTheGapOverTheSpeed) {
 
 TEST(ContactDelay, RecedingOrPassingPairsNeverTouch) {
   EXPECT_EQ(contact_delay(V(1.5, 0, 0), V(2, 0, 0), 1.0), kNever);
-  EXPECT_EQ(contact_delay(V(1.5, 0, 0), V(0, 1, 0), 1.0), kNever);      // perpendicular: b = 0
-  EXPECT_EQ(contact_delay(V(3, 1.5, 0), V(-1, 0, 0), 1.0), kNever);     // misses by 0.5
-  EXPECT_EQ(contact_delay(V(3, 1.0, 0), V(-1, 0, 0), 1.0), kNever);     // exactly tangent
+  EXPECT_EQ(contact_delay(V(1.5, 0, 0), V(0, 1, 0), 1.0), kNever);   // perpendicular: b = 0
+  EXPECT_EQ(contact_delay(V(3, 1.5, 0), V(-1, 0, 0), 1.0), kNever);  // misses by 0.5
+  EXPECT_EQ(contact_delay(V(3, 1.0, 0), V(-1, 0, 0), 1.0), kNever);  // exactly tangent
 }
 
 TEST(ContactDelay, TouchingOrOverlappingPairsCollideAtOnceOnlyWhenApproaching) {

@@ -12,8 +12,8 @@
 
 #include <cmath>
 
-#include "analysis/kinetic_theory.hpp"
 #include "analysis/gas_observer.hpp"
+#include "analysis/kinetic_theory.hpp"
 #include "core/initial_state.hpp"
 #include "event_driven/ed_simulator.hpp"
 
@@ -88,17 +88,15 @@ void check_elastic(const GasCase& c) {
   // crystalline, and Z low), then the measurement window.
   const double nu = collision_frequency(D, c.phi);
   const double equilibration = 100.0 / nu;
-  const Scene scene =
-      gas_scene(c, 1.0, equilibration + c.collisions_per_grain / nu, equilibration);
+  const Scene scene = gas_scene(c, 1.0, equilibration + c.collisions_per_grain / nu, equilibration);
   const GasRun<D> run = run_gas<D>(scene);
   const double z = run.observer.compressibility();
-  const double expected = D == 3 ? analysis::kinetic::carnahan_starling(c.phi)
-                                 : analysis::kinetic::henderson(c.phi);
+  const double expected =
+      D == 3 ? analysis::kinetic::carnahan_starling(c.phi) : analysis::kinetic::henderson(c.phi);
   const double drift = run.final_energy / run.initial_energy - 1.0;
   std::cout << "  " << D << "D phi " << c.phi << ": " << run.stats.collisions
-            << " collisions, Z = " << z << " (" << (D == 3 ? "CS" : "Henderson") << " "
-            << expected << ", " << 100.0 * (z / expected - 1.0) << "%), energy drift " << drift
-            << "\n";
+            << " collisions, Z = " << z << " (" << (D == 3 ? "CS" : "Henderson") << " " << expected
+            << ", " << 100.0 * (z / expected - 1.0) << "%), energy drift " << drift << "\n";
   EXPECT_NEAR(z / expected, 1.0, 0.015);
   EXPECT_LT(std::abs(drift), 1e-9);
 }
@@ -110,17 +108,17 @@ TEST_P(ElasticGas, CompressibilityMatchesTheEquationOfStateAndEnergyIsConserved)
     check_elastic<2>(GetParam());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    CarnahanStarlingAndHenderson, ElasticGas,
-    ::testing::Values(GasCase{3, 0.1, kGrains3d, kCollisionsPerGrain},
-                      GasCase{3, 0.3, kGrains3d, kCollisionsPerGrain},
-                      GasCase{3, 0.45, kGrains3d, kCollisionsPerGrain},
-                      GasCase{2, 0.3, kGrains2d, kCollisionsPerGrain},
-                      GasCase{2, 0.6, kGrains2d, kCollisionsPerGrain}),
-    [](const auto& info) {
-      return std::to_string(info.param.dimension) + "D_phi" +
-             std::to_string(static_cast<int>(std::lround(100 * info.param.phi)));
-    });
+INSTANTIATE_TEST_SUITE_P(CarnahanStarlingAndHenderson, ElasticGas,
+                         ::testing::Values(GasCase{3, 0.1, kGrains3d, kCollisionsPerGrain},
+                                           GasCase{3, 0.3, kGrains3d, kCollisionsPerGrain},
+                                           GasCase{3, 0.45, kGrains3d, kCollisionsPerGrain},
+                                           GasCase{2, 0.3, kGrains2d, kCollisionsPerGrain},
+                                           GasCase{2, 0.6, kGrains2d, kCollisionsPerGrain}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.dimension) + "D_phi" +
+                                  std::to_string(
+                                      static_cast<int>(std::lround(100 * info.param.phi)));
+                         });
 
 // The figure: energy conserved to 1e-9 relative over 10^6 collisions (10^5 in the
 // default suite), the time origin moving many times on the way.
@@ -147,8 +145,8 @@ void check_cooling(const GasCase& c) {
   const double equilibration = 5.0 / nu;
   const double rate = (1.0 - e * e) / (2.0 * D);  // of ln sqrt(T) per collision per grain
   const double window = c.collisions_per_grain;
-  const double t_end = equilibration + std::exp(rate * 5.0) * (std::exp(rate * window) - 1.0) /
-                                           (rate * nu);
+  const double t_end =
+      equilibration + std::exp(rate * 5.0) * (std::exp(rate * window) - 1.0) / (rate * nu);
   Scene scene = gas_scene(c, e, t_end, equilibration);
   scene.gas.sample_interval = t_end / 400.0;
   const GasRun<D> run = run_gas<D>(scene);

@@ -93,7 +93,8 @@ TEST(BlowUp, EnergyCreatedByTooLongAStepIsReported) {
           try {
             sim.advance_to(1.0);
           } catch (const BlowUpError& e) {
-            EXPECT_NE(std::string(e.what()).find("kinetic energy rose"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("kinetic energy rose"), std::string::npos)
+                << e.what();
             throw;
           }
         },

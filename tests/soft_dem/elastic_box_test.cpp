@@ -3,7 +3,6 @@
 // conserved to round-off; the energy after all collisions must come back close to the start.
 #include <gtest/gtest.h>
 
-
 #include "../common/lattice_cluster.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"

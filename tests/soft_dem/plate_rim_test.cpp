@@ -3,7 +3,6 @@
 // tests/conformance/plate_rim_test.cpp.
 #include <gtest/gtest.h>
 
-
 #include "core/plate_face.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"

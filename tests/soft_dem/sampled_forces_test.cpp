@@ -61,7 +61,8 @@ TEST(SampledForces, Eq3_3_TangentialForceStaysInTheCoulombConeAndTotalsAddUp) {
     for (const auto& c : f.contacts) {
       ++sampled;
       EXPECT_LE(c.tangential_force.norm(), 0.5 * c.normal_force.norm() * (1 + 1e-12));
-      EXPECT_NEAR(c.normal_force.dot(c.tangential_force), 0.0, 1e-12 * c.normal_force.squaredNorm());
+      EXPECT_NEAR(c.normal_force.dot(c.tangential_force), 0.0,
+                  1e-12 * c.normal_force.squaredNorm());
       const std::size_t i = sim->particles().id()[0] == c.i ? 0 : 1;
       const double tolerance = 1e-14 * c.normal_force.norm();
       EXPECT_LT((f.total[i] - (c.normal_force + c.tangential_force)).norm(), tolerance);

@@ -14,7 +14,8 @@ namespace {
 
 template <int D>
 TetheredWall<D> wall_of(const Scene& s, const Particles<D>& p) {
-  return TetheredWall<D>(p, s.wall.spring, 0.0, (s.wall.spacing + 2.0 * s.wall.jitter) * (1 + 1e-6));
+  return TetheredWall<D>(p, s.wall.spring, 0.0,
+                         (s.wall.spacing + 2.0 * s.wall.jitter) * (1 + 1e-6));
 }
 
 std::size_t identity(GrainId id) { return static_cast<std::size_t>(id); }

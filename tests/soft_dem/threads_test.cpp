@@ -25,8 +25,10 @@ std::vector<double> state_by_id(const Simulator<D>& sim) {
     out.push_back(static_cast<double>(p.id()[i]));
     for (int d = 0; d < D; ++d) out.insert(out.end(), {p.position()[i][d], p.velocity()[i][d]});
     const auto w = p.spin()[i];
-    if constexpr (D == 2) out.push_back(w);
-    else out.insert(out.end(), w.data(), w.data() + 3);
+    if constexpr (D == 2)
+      out.push_back(w);
+    else
+      out.insert(out.end(), w.data(), w.data() + 3);
   }
   return out;
 }

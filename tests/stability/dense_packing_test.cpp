@@ -60,11 +60,11 @@ void run_dense_jet(const DenseJet& c) {
     ADD_FAILURE() << c.name << ": " << e.what();
   }
   report("dense." + c.name,
-         cat(sim->particles().size(), " grains at the end, up to ", most_contacts,
-             " contacts (", contacts_per_grain, " per grain), max overlap ", worst_overlap,
+         cat(sim->particles().size(), " grains at the end, up to ", most_contacts, " contacts (",
+             contacts_per_grain, " per grain), max overlap ", worst_overlap,
              " of the smaller radius (limit ", scene.run.max_overlap, "), dissipated ",
-             dissipated / e0, " E_0, largest drop of the dissipated energy ", worst_drop,
-             " E_0, ", sim->stats().steps, " steps, ", clock.seconds(), " s"));
+             dissipated / e0, " E_0, largest drop of the dissipated energy ", worst_drop, " E_0, ",
+             sim->stats().steps, " steps, ", clock.seconds(), " s"));
   EXPECT_TRUE(all_finite(sim->particles()));
   EXPECT_LT(worst_overlap, scene.run.max_overlap);
   EXPECT_LT(worst_drop, 1e-4);
@@ -75,16 +75,15 @@ TEST(DensePacking, Sec3_JammedJet2dCloselyPackedStaysStableAtTheStudyDt) {
   run_dense_jet<2>({"jet2d_close_packed",
                     2,
                     {"jet.dispersity=mono", "jet.spacing=1.0", "jet.phi_tilde=1.0",
-                     "jet.diameter=20", "wall.diameter=44", "region.radius=88",
-                     "jet.grains=3000", "contact.friction=0.2", "run.t_end=60",
-                     "analysis.enabled=false"}});
+                     "jet.diameter=20", "wall.diameter=44", "region.radius=88", "jet.grains=3000",
+                     "contact.friction=0.2", "run.t_end=60", "analysis.enabled=false"}});
 }
 
 TEST(DensePacking, Sec3_JammedJet3dFccStaysStableAtTheStudyDt) {
   run_dense_jet<3>({"jet3d_fcc",
                     3,
-                    {"jet.diameter=6", "wall.diameter=14", "region.radius=28",
-                     "jet.grains=3000", "run.t_end=40", "analysis.enabled=false"}});
+                    {"jet.diameter=6", "wall.diameter=14", "region.radius=28", "jet.grains=3000",
+                     "run.t_end=40", "analysis.enabled=false"}});
 }
 
 struct DenseGas {
@@ -110,9 +109,9 @@ void run_dense_gas(const DenseGas& c) {
     const Scene scene = shipped_scene(
         D == 2 ? "gas2d" : "gas3d",
         {"scene.kind=" + std::string(law.e < 1.0 ? "hcs" : "gas"),
-         "contact.restitution=" + std::to_string(law.e), std::string("ed.restitution_law=") + law.law,
-         "gas.phi=" + std::to_string(c.phi), "gas.grains=" + std::to_string(c.grains),
-         "gas.equilibration=0", "run.t_end=1e9"});
+         "contact.restitution=" + std::to_string(law.e),
+         std::string("ed.restitution_law=") + law.law, "gas.phi=" + std::to_string(c.phi),
+         "gas.grains=" + std::to_string(c.grains), "gas.equilibration=0", "run.t_end=1e9"});
     Stopwatch clock;
     auto sim = ed::make_ed_simulator<D>(scene);
     const double n = static_cast<double>(sim->particles().size());

@@ -35,11 +35,11 @@ const char* name_of(IntegratorKind k) {
 struct Outcome {
   double ratio = 0.0;
   bool blew_up = false;
-  std::string blow_up;  // the BlowUpError message
-  bool finite = true;   // the final state, when the run finished
+  std::string blow_up;       // the BlowUpError message
+  bool finite = true;        // the final state, when the run finished
   double energy_gain = 0.0;  // (E - E_0)/E_0 of the finished run (total + removed): at the end
                              // (binary), the largest over the samples (jet)
-  double dissipated = std::numeric_limits<double>::quiet_NaN();  // jet: at the end, / E_0
+  double dissipated = std::numeric_limits<double>::quiet_NaN();   // jet: at the end, / E_0
   double restitution = std::numeric_limits<double>::quiet_NaN();  // binary only
   double contact_time = std::numeric_limits<double>::quiet_NaN();
 };
@@ -88,10 +88,10 @@ Outcome binary_run(IntegratorKind integrator, double ratio) {
 // tethered target) cut to a strip of 10 d and 400 grains, t = 0..30 (impact, dead zone and
 // outflow). Energy gain: (kinetic + rotational + elastic + removed)/E_0 - 1 = -dissipated/E_0.
 Outcome jet_run(IntegratorKind integrator, double ratio) {
-  Scene scene = shipped_scene(
-      "jet2d", {std::string("run.integrator=") + name_of(integrator), "jet.diameter=10",
-                "wall.diameter=22", "jet.grains=400", "region.radius=44", "run.t_end=30",
-                "analysis.enabled=false"});
+  Scene scene =
+      shipped_scene("jet2d", {std::string("run.integrator=") + name_of(integrator),
+                              "jet.diameter=10", "wall.diameter=22", "jet.grains=400",
+                              "region.radius=44", "run.t_end=30", "analysis.enabled=false"});
   scene.run.dt = ratio * scene.contact.contact_time;
   Outcome o;
   o.ratio = ratio;
@@ -186,8 +186,8 @@ TEST_P(DtSweep, B21_ShortJetEitherFinishesFiniteOrReportsTheBlowUp) {
   }
   ASSERT_TRUE(threshold.has_value()) << "no blow-up up to dt = 1.5 t_c";
   const Outcome just_below = binary_run(integrator, below);
-  report(key + ".threshold", cat("first blow-up at dt/t_c = ", *threshold, "; at dt/t_c = ",
-                                 below, " the binary: ", describe(just_below)));
+  report(key + ".threshold", cat("first blow-up at dt/t_c = ", *threshold, "; at dt/t_c = ", below,
+                                 " the binary: ", describe(just_below)));
 }
 
 // Expected: a run never creates energy silently. e = 0.75 only dissipates, so at a dt granjet
@@ -208,9 +208,8 @@ TEST_P(DtSweep, B21_AcceptedDtNeverCreatesEnergySilently) {
     if (warned) continue;
     for (const Outcome& o : {binary_run(integrator, ratio), jet_run(integrator, ratio)})
       if (!o.blew_up) {
-        EXPECT_LT(o.energy_gain, 0.01)
-            << name_of(integrator) << " dt/t_c = " << ratio << ": " << describe(o)
-            << " -- energy created and no BlowUpError";
+        EXPECT_LT(o.energy_gain, 0.01) << name_of(integrator) << " dt/t_c = " << ratio << ": "
+                                       << describe(o) << " -- energy created and no BlowUpError";
       }
   }
 }
@@ -220,8 +219,8 @@ TEST_P(DtSweep, B21_AcceptedDtNeverCreatesEnergySilently) {
 // 1e307 d/u0 overflows its position to inf near t = 18; stepping one dt at a time, every
 // return is checked.
 TEST_P(DtSweep, B21_AStepThatOverflowsNeverReturnsANonFiniteState) {
-  Scene scene = shipped_scene("binary", {std::string("run.integrator=") + name_of(GetParam()),
-                                         "contact.friction=0"});
+  Scene scene = shipped_scene(
+      "binary", {std::string("run.integrator=") + name_of(GetParam()), "contact.friction=0"});
   Particles<3> p;
   p.add(7, GrainKind::kFree, Vec<3>::Zero(), Vec<3>(1e307, 0, 0), 0.5, 1.0);
   p.add(8, GrainKind::kFree, Vec<3>(0, 5, 0), Vec<3>::Zero(), 0.5, 1.0);
@@ -242,8 +241,8 @@ TEST_P(DtSweep, B21_AStepThatOverflowsNeverReturnsANonFiniteState) {
                first_silent >= 0 ? cat(" (first after step ", first_silent, ")") : ""));
     EXPECT_EQ(e.grain_ids(), std::vector<GrainId>{7});
   }
-  EXPECT_EQ(silent_steps, 0) << "advance_to returned a non-finite state after step "
-                             << first_silent << " without throwing";
+  EXPECT_EQ(silent_steps, 0) << "advance_to returned a non-finite state after step " << first_silent
+                             << " without throwing";
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, DtSweep,

@@ -51,11 +51,11 @@ struct LawOutcome {
 };
 
 Scene collapse_scene(const CollapseCase& c, const std::string& law) {
-  return shipped_scene(c.dimension == 2 ? "hcs2d" : "hcs3d",
-                       {"contact.restitution=" + std::to_string(c.e0),
-                        "gas.phi=" + std::to_string(c.phi),
-                        "gas.grains=" + std::to_string(c.grains), "ed.restitution_law=" + law,
-                        "gas.equilibration=0", "run.t_end=1e9"});
+  return shipped_scene(
+      c.dimension == 2 ? "hcs2d" : "hcs3d",
+      {"contact.restitution=" + std::to_string(c.e0), "gas.phi=" + std::to_string(c.phi),
+       "gas.grains=" + std::to_string(c.grains), "ed.restitution_law=" + law, "gas.equilibration=0",
+       "run.t_end=1e9"});
 }
 
 // Advances in time chunks that double while the gas cools (Haff: collision times grow), until
@@ -96,10 +96,12 @@ LawOutcome run_law(const Scene& scene) {
 }
 
 std::string describe(const LawOutcome& o) {
-  return cat(o.collapsed ? "collapsed" : o.frozen ? "cooled below 1e-30 T0" : "ran through",
-             " after ", o.collisions_per_grain,
-             " collisions/grain, t = ", o.time, ", T/T0 = ", o.temperature_ratio, ", ",
-             o.seconds, " s", o.collapsed ? "; " + o.message : "");
+  return cat(o.collapsed ? "collapsed"
+             : o.frozen  ? "cooled below 1e-30 T0"
+                         : "ran through",
+             " after ", o.collisions_per_grain, " collisions/grain, t = ", o.time,
+             ", T/T0 = ", o.temperature_ratio, ", ", o.seconds, " s",
+             o.collapsed ? "; " + o.message : "");
 }
 
 class EdCollapse : public ::testing::TestWithParam<CollapseCase> {};

@@ -41,9 +41,8 @@ double elastic_jet_drift(const std::string& integrator) {
     series += cat(" t", t, ": ", drift);
   }
   report("drift.soft_dem." + integrator,
-         cat("relative energy drift", series, "; largest |drift| ", worst, ", ",
-             sim->stats().steps, " steps, ", sim->stats().removed, " grains removed, ",
-             clock.seconds(), " s"));
+         cat("relative energy drift", series, "; largest |drift| ", worst, ", ", sim->stats().steps,
+             " steps, ", sim->stats().removed, " grains removed, ", clock.seconds(), " s"));
   EXPECT_TRUE(all_finite(sim->particles()));
   EXPECT_LT(worst, 0.01) << integrator;
   return worst;
@@ -76,10 +75,9 @@ TEST(EnergyDrift, Sec8_ElasticGasOverTenMillionCollisions) {
   const double drift = sim->energy().kinetic / e0 - 1.0;
   worst = std::max(worst, std::abs(drift));
   report("drift.event_driven.gas3d",
-         cat(sim->stats().collisions, " collisions, t = ", sim->time(),
-             ", relative energy drift", series, "; largest |drift| ", worst, ", ",
-             sim->stats().collisions / clock.seconds(), " collisions/s, ", clock.seconds(),
-             " s"));
+         cat(sim->stats().collisions, " collisions, t = ", sim->time(), ", relative energy drift",
+             series, "; largest |drift| ", worst, ", ", sim->stats().collisions / clock.seconds(),
+             " collisions/s, ", clock.seconds(), " s"));
   EXPECT_TRUE(all_finite(sim->particles()));
   EXPECT_LT(worst, 1e-9);
 }
