@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "core/jet_geometry.hpp"
+
 namespace granjet::analysis {
 namespace {
 
@@ -14,7 +16,7 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 template <int D>
 Vec<D> perpendicular(const Vec<D>& v) {
   Vec<D> p = v;
-  p[Dim<D>::kJetAxis] = 0.0;
+  p[kJetAxis<D>] = 0.0;
   return p;
 }
 
@@ -28,7 +30,7 @@ double scattering_angle(std::span<const Vec<D>> velocities) {
     const double speed = v.norm();
     if (speed == 0.0) continue;
     along_wall += perpendicular<D>(v).norm() / speed;
-    forward += -v[Dim<D>::kJetAxis] / speed;  // the jet travels along -e_jet
+    forward += -v[kJetAxis<D>] / speed;  // the jet travels along -e_jet
     ++n;
   }
   return n == 0 ? kNaN : std::atan2(along_wall, forward);

@@ -13,6 +13,7 @@
 #include "app/scene_file.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "core/jet_geometry.hpp"
 
 namespace granjet {
 namespace {
@@ -74,8 +75,8 @@ std::pair<std::int64_t, double> grains_over_run(const Scene& scene) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo, jet = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.kind()[i] != GrainKind::kWall) {
-      lo = std::min(lo, p.position()[i][Dim<D>::kJetAxis]);
-      hi = std::max(hi, p.position()[i][Dim<D>::kJetAxis]);
+      lo = std::min(lo, p.position()[i][kJetAxis<D>]);
+      hi = std::max(hi, p.position()[i][kJetAxis<D>]);
       jet += 1.0;
     }
   const double used_up = (hi - lo + scene.region.radius) / scene.jet.speed;

@@ -13,7 +13,6 @@ struct Dim;
 template <>
 struct Dim<2> {
   static constexpr int kDim = 2;
-  static constexpr int kJetAxis = 0;  // the jet moves along -x onto the target line x = 0
   using Vec = Eigen::Vector2d;
   using Spin = double;  // angular velocity about the out-of-plane axis
   // Moment of inertia of a solid disk: I = 1/2 m R^2 (spec §2).
@@ -29,7 +28,6 @@ struct Dim<2> {
 template <>
 struct Dim<3> {
   static constexpr int kDim = 3;
-  static constexpr int kJetAxis = 2;  // the jet moves along -z onto the target plane z = 0
   using Vec = Eigen::Vector3d;
   using Spin = Eigen::Vector3d;
   // Moment of inertia of a solid sphere: I = 2/5 m R^2 (spec §2).

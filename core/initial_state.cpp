@@ -7,6 +7,7 @@
 #include <numbers>
 #include <utility>
 
+#include "core/jet_geometry.hpp"
 #include "core/random.hpp"
 
 namespace granjet {
@@ -163,17 +164,17 @@ Particles<D> build_jet(const Scene& scene) {
   jitter_wall_sites<D>(wall, scene.wall, scene.run.seed);
   const std::vector<double> diameters = jet_diameters(scene.jet, rng);
   Vec<D> velocity = Vec<D>::Zero();
-  velocity[Dim<D>::kJetAxis] = -scene.jet.speed;
+  velocity[kJetAxis<D>] = -scene.jet.speed;
   Particles<D> p;
   GrainId id = 0;
   const bool touching = scene.jet.spacing == 1.0;
   Vec<D> front_centre = Vec<D>::Zero();
-  front_centre[Dim<D>::kJetAxis] = front;
+  front_centre[kJetAxis<D>] = front;
   for (std::size_t i = 0; i < sites.size(); ++i) {
     Vec<D> x = sites[i];
     if (touching) x = front_centre + (1.0 + kLatticeClearance) * (x - front_centre);
     // The front row sits `gap` from the target whatever the grain size: shift small grains.
-    x[Dim<D>::kJetAxis] -= 0.5 * (1.0 - diameters[i]);
+    x[kJetAxis<D>] -= 0.5 * (1.0 - diameters[i]);
     p.add(id++, GrainKind::kFree, x, velocity, 0.5 * diameters[i],
           grain_mass<D>(scene.jet, diameters[i]));
   }

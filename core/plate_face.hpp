@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/dim.hpp"
+#include "core/jet_geometry.hpp"
 #include "core/particles.hpp"
 #include "core/scene.hpp"
 
@@ -21,7 +22,7 @@ inline constexpr double kPlateFace = 0.5;
 template <int D>
 class PlateFace {
  public:
-  static constexpr int kAxis = Dim<D>::kJetAxis;
+  static constexpr int kAxis = kJetAxis<D>;
 
   explicit PlateFace(double diameter) : radius_(0.5 * diameter) {}
 
@@ -57,9 +58,5 @@ class PlateFace {
  protected:
   double radius_;
 };
-
-inline bool has_plate(const Scene& scene) {
-  return scene.has_wall() && scene.wall.kind == WallKind::kPlate;
-}
 
 }  // namespace granjet

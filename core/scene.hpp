@@ -186,6 +186,9 @@ struct Scene {
   bool needs_rotation() const { return frictional(); }
   bool needs_history() const { return frictional(); }
   bool has_wall() const { return kind == SceneKind::kJet; }
+  // The target, by its kind (jet scenes only).
+  bool has_plate() const { return has_wall() && wall.kind == WallKind::kPlate; }
+  bool has_tethered_wall() const { return has_wall() && wall.kind == WallKind::kTethered; }
   bool periodic() const { return kind == SceneKind::kGas || kind == SceneKind::kHcs; }
   bool monodisperse() const {
     return kind != SceneKind::kJet || jet.dispersity == Dispersity::kMono;

@@ -7,6 +7,7 @@
 #include "core/collision_rules.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "core/jet_geometry.hpp"
 #include "event_driven/scene_support.hpp"
 
 namespace granjet::ed {
@@ -45,7 +46,7 @@ CellList<D> make_cells(const Scene& scene, const Particles<D>& p) {
   }
   if (scene.has_wall()) {
     for (int a = 0; a < D; ++a) {
-      if (a == Dim<D>::kJetAxis) {
+      if (a == kJetAxis<D>) {
         lo[a] = std::min(lo[a], -scene.region.below);
       } else {
         lo[a] = std::min(lo[a], -scene.region.radius);
@@ -70,7 +71,7 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
       calendar_(grains_.size()),
       collapse_(grains_.size()) {
   const std::size_t n = grains_.size();
-  if (scene.has_wall() && scene.wall.kind == WallKind::kPlate) plate_.emplace(scene.wall.diameter);
+  if (scene.has_plate()) plate_.emplace(scene.wall.diameter);
   flight_.resize(n);
   std::int64_t free_grains = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -300,7 +301,8 @@ void EdSimulator<D>::cross_cell(std::uint32_t i) {
   f.stream_to(clock_);
   const Crossing moved = next_exit_[i];
   f.x += cells_.move(i, moved.axis, moved.direction);
-  if (scene_.has_wall() && grains_.kind()[i] == GrainKind::kFree && outside_region(f.x)) {
+  if (scene_.has_wall() && grains_.kind()[i] == GrainKind::kFree &&
+      outside_region<D>(scene_.region, f.x)) {
     remove(i);
     return;
   }
@@ -312,15 +314,6 @@ void EdSimulator<D>::cross_cell(std::uint32_t i) {
     predict_all(i);
   predict_exit(i);
   schedule(i);
-}
-
-// The same region as the soft backend: farther than region.radius from the jet axis or
-// region.below behind the target plane.
-template <int D>
-bool EdSimulator<D>::outside_region(const Vec<D>& x) const {
-  constexpr int kAxis = Dim<D>::kJetAxis;
-  const double lateral2 = x.squaredNorm() - x[kAxis] * x[kAxis];
-  return lateral2 > scene_.region.radius * scene_.region.radius || x[kAxis] < -scene_.region.below;
 }
 
 template <int D>

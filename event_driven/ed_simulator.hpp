@@ -97,7 +97,6 @@ class EdSimulator final : public Simulator<D> {
   void schedule(std::uint32_t i);
   void shift_time_origin();
   double flight_time() const;
-  bool outside_region(const Vec<D>& x) const;
   [[noreturn]] void report_collapse(std::uint32_t i, std::uint32_t j) const;
   void take_snapshot();
   void check_contact(std::uint32_t i, std::uint32_t j, double distance) const;

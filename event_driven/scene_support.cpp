@@ -26,7 +26,7 @@ SceneSupport scene_support(const Scene& scene) {
     support.unsupported.push_back(
         {"output.fields",
          "omega: the grains of this run do not turn (smooth hard spheres); drop it"});
-  if (scene.has_wall() && scene.wall.kind == WallKind::kTethered) {
+  if (scene.has_tethered_wall()) {
     hard.wall.kind = WallKind::kFixed;
     support.adaptations.push_back({"wall.kind", "tethered", "fixed",
                                    "hard grains have no springs: the tethered target becomes "

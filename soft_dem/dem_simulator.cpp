@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "core/jet_geometry.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 #include "soft_dem/hertz_mindlin.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"
@@ -25,10 +26,10 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
       law_(scene.contact, scene.dt()),
       dt_(scene.dt()),
       overlap_limit_(scene.run.max_overlap),
-      tethered_(scene.has_wall() && scene.wall.kind == WallKind::kTethered),
+      tethered_(scene.has_tethered_wall()),
       threads_(scene.run.threads),
       pass_(scene.run.threads, scene.run.max_overlap) {
-  if (has_plate(scene)) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
+  if (scene.has_plate()) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
   // beyond that. The tethers' dashpots are wall.damping_ratio times the eta_n of [3.5] whatever
   // the contact law (spec §4 gives them in the linear law's terms).
@@ -304,15 +305,11 @@ void DemSimulator<D, Law, kMono, Space>::check_finite() const {
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
   if (!scene_.has_wall()) return;
-  constexpr int kAxis = Dim<D>::kJetAxis;
-  const double r2_max = scene_.region.radius * scene_.region.radius;
   std::vector<std::uint32_t> keep;
   keep.reserve(p_.size());
   for (std::uint32_t i = 0; i < p_.size(); ++i) {
-    const Vec<D>& x = p_.position()[i];
-    const double lateral2 = x.squaredNorm() - x[kAxis] * x[kAxis];
     const bool escaped =
-        p_.kind()[i] == GrainKind::kFree && (lateral2 > r2_max || x[kAxis] < -scene_.region.below);
+        p_.kind()[i] == GrainKind::kFree && outside_region<D>(scene_.region, p_.position()[i]);
     if (!escaped) {
       keep.push_back(i);
       continue;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "backends.hpp"
+#include "core/jet_geometry.hpp"
 #include "core/plate_face.hpp"
 
 namespace granjet {
@@ -17,7 +18,7 @@ TYPED_TEST_SUITE(PlateConformance, testing::AllBackends);
 TYPED_TEST(PlateConformance, Eq2_1_HeadOnOnThePlateGivesTheRestitution) {
   using Backend = typename TypeParam::Backend;
   constexpr int D = TypeParam::D;
-  constexpr int kAxis = Dim<D>::kJetAxis;
+  constexpr int kAxis = kJetAxis<D>;
   for (const double e : {0.5, 0.75, 0.9}) {
     SCOPED_TRACE(std::string(Backend::kName) + " e = " + std::to_string(e));
     Scene scene;

@@ -14,6 +14,7 @@
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "core/jet_geometry.hpp"
 #include "event_driven/plate.hpp"
 
 namespace granjet::ed {
@@ -70,8 +71,8 @@ TYPED_TEST(EdSimulatorCase, GrainsLeavingTheRegionAreRemovedWithTheirEnergyBooke
   Particles<D> p;
   Vec<D> lateral = Vec<D>::Zero(), down = Vec<D>::Zero(), away = Vec<D>::Zero();
   lateral[1] = 2.0;  // across the jet axis
-  down[Dim<D>::kJetAxis] = -1.0;
-  away[Dim<D>::kJetAxis] = 4.0;
+  down[kJetAxis<D>] = -1.0;
+  away[kJetAxis<D>] = 4.0;
   p.add(0, GrainKind::kFree, away, lateral, 0.5, 1.0);
   p.add(1, GrainKind::kFree, Vec<D>(away - lateral), down, 0.5, 1.0);
   p.add(2, GrainKind::kWall, Vec<D>::Zero(), Vec<D>::Zero(), 0.5, kInfiniteMass);
@@ -216,7 +217,7 @@ Scene plate_scene(int dimension, double e) {
 template <int D>
 Particles<D> one_grain(double lateral, double height, double closing, double sideways) {
   Vec<D> x = Vec<D>::Zero(), v = Vec<D>::Zero();
-  const int axis = Dim<D>::kJetAxis, across = (axis + 1) % D;
+  const int axis = kJetAxis<D>, across = (axis + 1) % D;
   x[axis] = kPlateFace + height;
   x[across] = lateral;
   v[axis] = -closing;
@@ -228,12 +229,12 @@ Particles<D> one_grain(double lateral, double height, double closing, double sid
 
 template <int D>
 double along_axis(const Vec<D>& v) {
-  return v[Dim<D>::kJetAxis];
+  return v[kJetAxis<D>];
 }
 
 template <int D>
 double across_axis(const Vec<D>& v) {
-  return v[(Dim<D>::kJetAxis + 1) % D];
+  return v[(kJetAxis<D> + 1) % D];
 }
 
 // [2.1]-[2.2] with an infinite-mass partner: the normal velocity comes back exactly e times as

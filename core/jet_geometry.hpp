@@ -1,0 +1,25 @@
+// The geometry every jet scene shares, whichever backend runs it or analysis measures it: the
+// axis the jet flies along and the region its grains are removed from. Scene geometry, not a
+// property of the dimension, so it lives here rather than in Dim<D>.
+#pragma once
+
+#include "core/dim.hpp"
+#include "core/scene.hpp"
+
+namespace granjet {
+
+// The axis the jet moves along (towards -infinity) onto the target at 0: 2D x (the target is
+// the line x = 0), 3D z (the plane z = 0).
+template <int D>
+inline constexpr int kJetAxis = D == 3 ? 2 : 0;
+
+// Whether a jet grain at x has left the region and is removed: farther than region.radius from
+// the jet axis, or more than region.below behind the target plane.
+template <int D>
+bool outside_region(const RegionSpec& region, const Vec<D>& x) {
+  constexpr int kAxis = kJetAxis<D>;
+  const double lateral2 = x.squaredNorm() - x[kAxis] * x[kAxis];
+  return lateral2 > region.radius * region.radius || x[kAxis] < -region.below;
+}
+
+}  // namespace granjet
