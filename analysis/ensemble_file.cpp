@@ -35,8 +35,7 @@ EnsembleResult write_ensemble_file(const std::filesystem::path& out_file,
                                    int dimension) {
   std::vector<RunResult> runs;
   for (const std::filesystem::path& member : members) runs.push_back(read_run_result(member));
-  return dimension == 2 ? write_file<2>(out_file, members, runs)
-                        : write_file<3>(out_file, members, runs);
+  return with_dimension(dimension, [&](auto d) { return write_file<d>(out_file, members, runs); });
 }
 
 }  // namespace granjet::analysis

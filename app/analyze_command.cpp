@@ -118,8 +118,7 @@ int analyze_command(const AnalyzeOptions& options, std::ostream& out) {
   const analysis::FileSummary stored = analysis::read_summary(options.file);
   if (options.window && !(options.window->second > options.window->first))
     throw InputError("--window", "expected t0:t1 with t1 > t0");
-  return stored.dimension == 2 ? analyze<2>(options, stored, out)
-                               : analyze<3>(options, stored, out);
+  return with_dimension(stored.dimension, [&](auto d) { return analyze<d>(options, stored, out); });
 }
 
 }  // namespace granjet

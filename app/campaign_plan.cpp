@@ -88,7 +88,7 @@ std::pair<std::int64_t, double> grains_over_run(const Scene& scene) {
 RunCost estimate_cost(const Scene& scene, const std::string& backend) {
   RunCost c;
   const auto [grains, mean_grains] =
-      scene.dimension == 2 ? grains_over_run<2>(scene) : grains_over_run<3>(scene);
+      with_dimension(scene.dimension, [&](auto d) { return grains_over_run<d>(scene); });
   c.grains = grains;
   if (backend == "event_driven") {
     c.grain_time = mean_grains * scene.run.t_end;

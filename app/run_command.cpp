@@ -356,8 +356,9 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   const StateArchive checkpoint = analysis::read_checkpoint(partial);
   if (!options.quiet)
     out << "resuming " << out_file.string() << " at t = " << stored.checkpoint_time << "\n";
-  return scene.dimension == 2 ? run_scene<2>(scene, run, out_file, out, &checkpoint)
-                              : run_scene<3>(scene, run, out_file, out, &checkpoint);
+  return with_dimension(scene.dimension, [&](auto d) {
+    return run_scene<d>(scene, run, out_file, out, &checkpoint);
+  });
 }
 
 int run_command(const RunOptions& options, std::ostream& out) {
@@ -373,11 +374,10 @@ int run_command(const RunOptions& options, std::ostream& out) {
                      "seed " + std::to_string(seed) + "'s"))
       outputs.push_back(std::move(o));
   check_outputs(options.scene_file, outputs);
-  if (!options.seeds.empty())
-    return scene.dimension == 2 ? run_ensemble<2>(scene, options, out_file, out)
-                                : run_ensemble<3>(scene, options, out_file, out);
-  return scene.dimension == 2 ? run_scene<2>(scene, options, out_file, out, nullptr)
-                              : run_scene<3>(scene, options, out_file, out, nullptr);
+  return with_dimension(scene.dimension, [&](auto d) {
+    if (!options.seeds.empty()) return run_ensemble<d>(scene, options, out_file, out);
+    return run_scene<d>(scene, options, out_file, out, nullptr);
+  });
 }
 
 }  // namespace granjet

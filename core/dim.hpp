@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
 #include <numbers>
+#include <type_traits>
 
 namespace granjet {
 
@@ -45,5 +46,13 @@ template <int D>
 using Vec = typename Dim<D>::Vec;
 template <int D>
 using Spin = typename Dim<D>::Spin;
+
+// Calls f(std::integral_constant<int, D>{}) for the run-time dimension (2 or 3): the one place
+// where a scene's or a file's dimension becomes a template parameter.
+template <class F>
+decltype(auto) with_dimension(int dimension, F&& f) {
+  if (dimension == 2) return f(std::integral_constant<int, 2>{});
+  return f(std::integral_constant<int, 3>{});
+}
 
 }  // namespace granjet
