@@ -15,6 +15,7 @@
 #include "app/ensemble_output.hpp"
 #include "app/scene_file.hpp"
 #include "core/errors.hpp"
+#include "core/initial_state.hpp"
 
 namespace granjet {
 namespace {
@@ -26,13 +27,9 @@ Particles<D> particles_of(const analysis::Frame<D>& frame, const Scene& scene) {
   Particles<D> p;
   for (std::size_t k = 0; k < frame.id.size(); ++k) {
     const bool wall = scene.kind == SceneKind::kJet && frame.id[k] >= scene.jet.grains;
-    double mass = 1.0;
-    if (wall && scene.wall.kind == WallKind::kFixed)
-      mass = std::numeric_limits<double>::infinity();
-    else if (!wall && scene.jet.mass_by_volume)
-      mass = std::pow(2.0 * frame.radius[k], D);
-    p.add(frame.id[k], wall ? GrainKind::kWall : GrainKind::kFree, frame.position[k],
-          frame.velocity[k], frame.radius[k], mass);
+    const GrainKind kind = wall ? GrainKind::kWall : GrainKind::kFree;
+    p.add(frame.id[k], kind, frame.position[k], frame.velocity[k], frame.radius[k],
+          grain_mass<D>(scene, kind, 2.0 * frame.radius[k]));
   }
   return p;
 }

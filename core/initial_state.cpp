@@ -144,11 +144,6 @@ std::vector<double> jet_diameters(const JetSpec& jet, Random& rng) {
 }
 
 template <int D>
-double grain_mass(const JetSpec& jet, double diameter) {
-  return jet.mass_by_volume ? std::pow(diameter, D) : 1.0;
-}
-
-template <int D>
 Particles<D> build_jet(const Scene& scene) {
   Random rng(scene.run.seed);
   const double front = 0.5 * kWallGrainDiameter + scene.jet.gap + 0.5;
@@ -176,10 +171,9 @@ Particles<D> build_jet(const Scene& scene) {
     // The front row sits `gap` from the target whatever the grain size: shift small grains.
     x[kJetAxis<D>] -= 0.5 * (1.0 - diameters[i]);
     p.add(id++, GrainKind::kFree, x, velocity, 0.5 * diameters[i],
-          grain_mass<D>(scene.jet, diameters[i]));
+          grain_mass<D>(scene, GrainKind::kFree, diameters[i]));
   }
-  const double wall_mass =
-      scene.wall.kind == WallKind::kFixed ? std::numeric_limits<double>::infinity() : 1.0;
+  const double wall_mass = grain_mass<D>(scene, GrainKind::kWall, kWallGrainDiameter);
   if (scene.wall.kind == WallKind::kPlate) return p;  // the plate replaces the target grains
   for (const Vec<D>& x : wall)
     p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kWallGrainDiameter, wall_mass);

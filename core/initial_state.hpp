@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include "core/particles.hpp"
 #include "core/scene.hpp"
@@ -32,6 +34,16 @@ extern template GasLattice<3> gas_lattice<3>(const GasSpec&);
 // [0, box) with Maxwellian velocities of zero total momentum and exactly gas.temperature.
 template <int D>
 Particles<D> build_initial_state(const Scene& scene);
+
+// A grain's mass, for the initial state and for anything that rebuilds grains from a file: jet
+// (and gas, binary) grains m = 1, or diameter^D with jet.mass_by_volume; target grains m = 1,
+// infinite (immovable) when wall.kind = fixed.
+template <int D>
+double grain_mass(const Scene& scene, GrainKind kind, double diameter) {
+  if (kind == GrainKind::kWall)
+    return scene.wall.kind == WallKind::kFixed ? std::numeric_limits<double>::infinity() : 1.0;
+  return scene.jet.mass_by_volume ? std::pow(diameter, D) : 1.0;
+}
 
 extern template Particles<2> build_initial_state<2>(const Scene&);
 extern template Particles<3> build_initial_state<3>(const Scene&);
