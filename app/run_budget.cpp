@@ -9,6 +9,7 @@
 
 #include "analysis/kinetic_theory.hpp"
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 
 namespace granjet {
 namespace {
@@ -27,20 +28,13 @@ constexpr double kMaxExtent = 1e7;
 constexpr double kBytesPerGrain = 2048.0;
 constexpr double kBaseBytes = 64e6;
 
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 // "KEY: WHAT would be VALUE UNIT; at most LIMIT UNIT".
 void refuse_above(double value, double limit, const std::string& key, const std::string& what,
                   const std::string& unit = "") {
   // !(<=) also refuses NaN and infinity.
   if (!(value <= limit))
-    throw InputError(
-        key, what + " would be " + number(value) + unit + "; at most " + number(limit) + unit);
+    throw InputError(key, what + " would be " + number_text(value) + unit + "; at most " +
+                              number_text(limit) + unit);
 }
 
 double wall_grains(const Scene& s) {
@@ -99,8 +93,9 @@ void check_memory(const Scene& s, double memory_bytes) {
   const std::string key = s.periodic()                                         ? "gas.grains"
                           : wall_grains(s) > static_cast<double>(s.jet.grains) ? "wall.diameter"
                                                                                : "jet.grains";
-  throw InputError(key, number(grains) + " grains would need about " + number(bytes / 1e9) +
-                            " GB; this machine has " + number(memory_bytes / 1e9) + " GB");
+  throw InputError(key, number_text(grains) + " grains would need about " +
+                            number_text(bytes / 1e9) + " GB; this machine has " +
+                            number_text(memory_bytes / 1e9) + " GB");
 }
 
 // The linear spring-dashpot [3.1] with t_c from [3.4]: a head-on contact at normal speed v
@@ -121,11 +116,12 @@ void check_soft_overlap(const Scene& s) {
       0.5 * (s.monodisperse() ? 1.0 : std::min(1.0, s.jet.small_diameter));
   const double overlap = speed * s.contact.contact_time / std::numbers::pi;
   if (overlap > s.run.max_overlap * smaller_radius)
-    throw InputError(key, "at speed " + number(speed) + " a contact of contact.contact_time = " +
-                              number(s.contact.contact_time) + " overlaps by " + number(overlap) +
-                              " d, beyond run.max_overlap = " + number(s.run.max_overlap) +
-                              " of the smaller radius " + number(smaller_radius) +
-                              ": the soft DEM would blow up; slow the grains or shorten t_c");
+    throw InputError(
+        key, "at speed " + number_text(speed) + " a contact of contact.contact_time = " +
+                 number_text(s.contact.contact_time) + " overlaps by " + number_text(overlap) +
+                 " d, beyond run.max_overlap = " + number_text(s.run.max_overlap) +
+                 " of the smaller radius " + number_text(smaller_radius) +
+                 ": the soft DEM would blow up; slow the grains or shorten t_c");
 }
 
 void check_duration(const Scene& s, const std::string& backend) {
@@ -169,11 +165,12 @@ void check_duration(const Scene& s, const std::string& backend) {
   if (s.output.contacts) per_grain += (d == 3 ? 3.0 : 2.0) * (3.0 + 2.0 * d);
   const double frame_bytes = estimated_grains(s) * per_grain * 8.0;
   if (frames * frame_bytes > s.output.max_bytes)
-    throw InputError("output.max_bytes",
-                     number(frames) + " frames of " + number(estimated_grains(s)) +
-                         " grains need about " + number(frames * frame_bytes / 1e9) +
-                         " GB, more than output.max_bytes = " + number(s.output.max_bytes / 1e9) +
-                         " GB; store fewer frames (output.interval) or raise it");
+    throw InputError(
+        "output.max_bytes",
+        number_text(frames) + " frames of " + number_text(estimated_grains(s)) +
+            " grains need about " + number_text(frames * frame_bytes / 1e9) +
+            " GB, more than output.max_bytes = " + number_text(s.output.max_bytes / 1e9) +
+            " GB; store fewer frames (output.interval) or raise it");
 }
 
 }  // namespace

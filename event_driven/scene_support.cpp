@@ -1,17 +1,8 @@
 #include "event_driven/scene_support.hpp"
 
-#include <sstream>
+#include "core/number_text.hpp"
 
 namespace granjet::ed {
-namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-}  // namespace
 
 SceneSupport scene_support(const Scene& scene) {
   SceneSupport support;
@@ -34,11 +25,12 @@ SceneSupport scene_support(const Scene& scene) {
   }
   if (scene.kind == SceneKind::kJet && scene.jet.spacing < kMinJetSpacing) {
     hard.jet.spacing = kMinJetSpacing;
-    support.adaptations.push_back({"jet.spacing", number(scene.jet.spacing), number(kMinJetSpacing),
+    support.adaptations.push_back({"jet.spacing", number_text(scene.jet.spacing),
+                                   number_text(kMinJetSpacing),
                                    "hard grains in contact have no collision order"});
   }
   if (scene.frictional())
-    support.notes.push_back("contact.friction = " + number(scene.contact.friction) +
+    support.notes.push_back("contact.friction = " + number_text(scene.contact.friction) +
                             " is ignored (hard grains are frictionless)");
   support.notes.push_back(
       "contact.contact_time, run.dt, run.integrator and run.skin have no hard-core meaning and "
