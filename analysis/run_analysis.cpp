@@ -8,7 +8,7 @@
 
 #include "analysis/free_streamline.hpp"
 #include "analysis/kinetic_theory.hpp"
-#include "core/plate_face.hpp"
+#include "core/jet_geometry.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -29,9 +29,9 @@ std::vector<FitResult> scene_fits(const EnsembleTable& bins, int dimension) {
 
 // The position on the jet axis of the layers' h = 0 (spec §6 "Height origin", an assumption of
 // the reproduction): the target grains' centre plane, or their top surface, which is where the
-// plate's face lies too (kPlateFace).
+// plate's face lies too (core/jet_geometry.hpp).
 double height_origin_position(HeightOrigin origin) {
-  return origin == HeightOrigin::kWallSurface ? kPlateFace : 0.0;
+  return origin == HeightOrigin::kWallSurface ? kTargetSurface : 0.0;
 }
 
 // Grains count as scattered once they "have left the target region" (spec §6), which the

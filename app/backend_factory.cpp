@@ -11,10 +11,10 @@ namespace {
 
 const std::vector<Backend>& backends() {
   static const std::vector<Backend> all = {
-      {"soft_dem", /*counts_events=*/false, dem::scene_support, dem::make_dem_simulator<2>,
-       dem::make_dem_simulator<3>},
-      {"event_driven", /*counts_events=*/true, ed::scene_support, ed::make_ed_simulator<2>,
-       ed::make_ed_simulator<3>}};
+      {"soft_dem", /*counts_events=*/false, dem::peak_overlap, dem::scene_support,
+       dem::make_dem_simulator<2>, dem::make_dem_simulator<3>},
+      {"event_driven", /*counts_events=*/true, /*peak_overlap=*/nullptr, ed::scene_support,
+       ed::make_ed_simulator<2>, ed::make_ed_simulator<3>}};
   return all;
 }
 

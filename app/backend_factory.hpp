@@ -18,6 +18,9 @@ struct Backend {
   // Event-driven: its work is events and collisions (progress rows, summary), not time steps
   // and contacts.
   bool counts_events = false;
+  // Soft grains: the deepest overlap of a head-on contact at relative normal speed v (the run
+  // budget refuses scenes beyond run.max_overlap); null for hard grains, which never overlap.
+  double (*peak_overlap)(const Scene& scene, double v) = nullptr;
   SceneSupport (*support)(const Scene& scene) = nullptr;
   // Its simulator of a scene it resolved.
   std::unique_ptr<Simulator<2>> (*make_2d)(const Scene& resolved) = nullptr;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "analysis/kinetic_theory.hpp"
+#include "app/backend_factory.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
 
@@ -98,11 +99,10 @@ void check_memory(const Scene& s, double memory_bytes) {
                             number_text(memory_bytes / 1e9) + " GB");
 }
 
-// The linear spring-dashpot [3.1] with t_c from [3.4]: a head-on contact at normal speed v
-// overlaps by at most v t_c / pi (the undamped half-period's amplitude v / omega_0). The
-// characteristic speed is the scene's (the jet's, the binary's, or the gas's rms relative
-// speed sqrt(2 D T), with T = sum m v^2 / (D N)).
-void check_soft_overlap(const Scene& s) {
+// A head-on contact at the scene's characteristic speed (the jet's, the binary's, or the gas's
+// rms relative speed sqrt(2 D T), with T = sum m v^2 / (D N)) overlaps by at most what the
+// backend's contact law says (for [3.1] with [3.4], v t_c / pi).
+void check_soft_overlap(const Scene& s, double (*peak_overlap)(const Scene&, double)) {
   double speed = s.jet.speed;
   std::string key = "jet.speed";
   if (s.kind == SceneKind::kBinary) {
@@ -114,7 +114,7 @@ void check_soft_overlap(const Scene& s) {
   }
   const double smaller_radius =
       0.5 * (s.monodisperse() ? 1.0 : std::min(1.0, s.jet.small_diameter));
-  const double overlap = speed * s.contact.contact_time / std::numbers::pi;
+  const double overlap = peak_overlap(s, speed);
   if (overlap > s.run.max_overlap * smaller_radius)
     throw InputError(
         key, "at speed " + number_text(speed) + " a contact of contact.contact_time = " +
@@ -124,13 +124,13 @@ void check_soft_overlap(const Scene& s) {
                  ": the soft DEM would blow up; slow the grains or shorten t_c");
 }
 
-void check_duration(const Scene& s, const std::string& backend) {
+void check_duration(const Scene& s, const Backend& backend) {
   const double t_end = s.run.t_end;
-  // The soft DEM steps by dt; the event-driven binary run is sampled every dt too.
-  if (backend != "event_driven" || s.kind == SceneKind::kBinary)
+  // A time-stepped backend steps by dt; an event-driven binary run is sampled every dt too.
+  if (!backend.counts_events || s.kind == SceneKind::kBinary)
     refuse_above(t_end / s.dt(), kMaxSteps, s.run.dt > 0.0 ? "run.dt" : "run.t_end",
                  "the time steps (run.t_end / run.dt)");
-  if (backend == "event_driven" && s.periodic()) {
+  if (backend.counts_events && s.periodic()) {
     // Enskog's collision frequency per grain (d = m = 1): 24 phi chi sqrt(T/pi) in 3D,
     // 8 phi chi sqrt(T/pi) in 2D, with phi chi from the equation of state Z = 1 + 2^(D-1) phi chi.
     const double z = s.dimension == 3 ? analysis::kinetic::carnahan_starling(s.gas.phi)
@@ -194,10 +194,11 @@ double estimated_grains(const Scene& s) {
   return 0.0;
 }
 
-void check_run_budget(const Scene& scene, const std::string& backend, double memory_bytes) {
+void check_run_budget(const Scene& scene, const std::string& backend_name, double memory_bytes) {
+  const Backend& backend = backend_named(backend_name);
   check_memory(scene, memory_bytes);  // first: it names the grain count, the likeliest cause
   check_extent(scene);
-  if (backend != "event_driven") check_soft_overlap(scene);
+  if (backend.peak_overlap) check_soft_overlap(scene, backend.peak_overlap);
   check_duration(scene, backend);
 }
 

@@ -12,7 +12,9 @@
 
 namespace granjet {
 
-// Throws InputError naming the key. `memory_bytes` is what the machine has (physical memory).
+// Throws InputError naming the key (--backend for an unknown backend). What the backend declares
+// (app/backend_factory.hpp) decides what counts: time steps or collisions, contact overlaps.
+// `memory_bytes` is what the machine has (physical memory).
 void check_run_budget(const Scene& scene, const std::string& backend, double memory_bytes);
 
 // The machine's physical memory in bytes.

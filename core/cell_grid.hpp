@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/cell_sizing.hpp"
 #include "core/dim.hpp"
 
 namespace granjet {
@@ -17,9 +18,8 @@ namespace granjet {
 template <int D>
 class CellGrid {
  public:
-  // Bins `positions` into cells with edges of at least `min_edge`. The edges grow when the box
-  // would need more than kMaxCellsPerGrain cells per grain (a few scattered grains far away
-  // must not allocate a huge empty grid); larger cells stay correct, only slower.
+  // Bins `positions` into cells with edges of at least `min_edge`, grown when the box would need
+  // more than kMaxCellsPerGrain cells per grain (core/cell_sizing.hpp).
   void build(std::span<const Vec<D>> positions, double min_edge) {
     Vec<D> lo = Vec<D>::Constant(0.0), hi = Vec<D>::Constant(0.0);
     if (!positions.empty()) lo = hi = positions[0];
@@ -28,9 +28,8 @@ class CellGrid {
       hi = hi.cwiseMax(x);
     }
     const Vec<D> extent = (hi - lo).cwiseMax(min_edge);
-    double edge = min_edge;
-    const double max_cells = kMaxCellsPerGrain * std::max<std::size_t>(positions.size(), 1);
-    while (cell_count(extent, edge) > max_cells) edge *= 1.25;
+    const double edge =
+        capped_cell_edge<D>(extent, min_edge, max_cells(positions.size()), CellFit::kTile);
     periodic_ = false;
     lo_ = lo;
     for (int d = 0; d < D; ++d) {
@@ -48,9 +47,8 @@ class CellGrid {
   void build_periodic(std::span<const Vec<D>> positions, const Vec<D>& box, double min_edge) {
     periodic_ = true;
     lo_.setZero();
-    double edge = min_edge;
-    const double max_cells = kMaxCellsPerGrain * std::max<std::size_t>(positions.size(), 1);
-    while (cell_count(box, edge) > max_cells) edge *= 1.25;
+    const double edge =
+        capped_cell_edge<D>(box, min_edge, max_cells(positions.size()), CellFit::kTile);
     for (int d = 0; d < D; ++d) {
       dims_[d] = static_cast<int>(box[d] / edge);
       if (dims_[d] < 3)
@@ -95,7 +93,11 @@ class CellGrid {
   }
 
  private:
+  // Every rebuild walks every cell (the counting sort, the pair loop): a few per grain.
   static constexpr double kMaxCellsPerGrain = 16.0;
+  static double max_cells(std::size_t grains) {
+    return kMaxCellsPerGrain * static_cast<double>(std::max<std::size_t>(grains, 1));
+  }
 
   void bin(std::span<const Vec<D>> positions) {
     total_ = 1;
@@ -111,12 +113,6 @@ class CellGrid {
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < positions.size(); ++i)
       order_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
-  }
-
-  static double cell_count(const Vec<D>& extent, double edge) {
-    double n = 1.0;
-    for (int d = 0; d < D; ++d) n *= std::max(1.0, std::floor(extent[d] / edge));
-    return n;
   }
 
   std::uint32_t cell_index(const Vec<D>& x) const {

@@ -13,7 +13,6 @@
 namespace granjet {
 namespace {
 
-constexpr double kWallGrainDiameter = 1.0;
 // Lattice neighbours placed exactly touching (spacing = 1 d, the smallest the scene file allows,
 // as jet3d's fcc) are, in floating point, a coin flip between an overlap and a gap of ~1e-16 d:
 // a third of them would start as contacts without force, and several thousand of those persist
@@ -146,7 +145,7 @@ std::vector<double> jet_diameters(const JetSpec& jet, Random& rng) {
 template <int D>
 Particles<D> build_jet(const Scene& scene) {
   Random rng(scene.run.seed);
-  const double front = 0.5 * kWallGrainDiameter + scene.jet.gap + 0.5;
+  const double front = kTargetSurface + scene.jet.gap + 0.5;
   std::vector<Vec<D>> sites;
   std::vector<Vec<D>> wall;
   if constexpr (D == 3) {
@@ -173,10 +172,10 @@ Particles<D> build_jet(const Scene& scene) {
     p.add(id++, GrainKind::kFree, x, velocity, 0.5 * diameters[i],
           grain_mass<D>(scene, GrainKind::kFree, diameters[i]));
   }
-  const double wall_mass = grain_mass<D>(scene, GrainKind::kWall, kWallGrainDiameter);
+  const double wall_mass = grain_mass<D>(scene, GrainKind::kWall, kTargetGrainDiameter);
   if (scene.wall.kind == WallKind::kPlate) return p;  // the plate replaces the target grains
   for (const Vec<D>& x : wall)
-    p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kWallGrainDiameter, wall_mass);
+    p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kTargetGrainDiameter, wall_mass);
   return p;
 }
 

@@ -8,6 +8,13 @@
 
 namespace granjet {
 
+// The target grains (wall.kind = tethered or fixed) have one diameter d and sit centred on the
+// target plane, 0 on the jet axis. The target's surface, their front face, lies d/2 in front of
+// it: the plate (wall.kind = plate) puts its face there in their place, so the jet's front row
+// keeps the scene's gap to the target, and analysis.height_origin = wall_surface starts there.
+inline constexpr double kTargetGrainDiameter = 1.0;
+inline constexpr double kTargetSurface = 0.5 * kTargetGrainDiameter;
+
 // The axis the jet moves along (towards -infinity) onto the target at 0: 2D x (the target is
 // the line x = 0), 3D z (the plane z = 0).
 template <int D>

@@ -14,11 +14,6 @@ namespace granjet {
 // (PairImpulse::j); the partner position is the grain's mirror image through the face.
 inline constexpr GrainId kPlateId = -1;
 
-// The target grains (diameter d) sit centred on the target plane (core/initial_state.cpp): the
-// plate takes the place of their front face, d/2 in front of the plane, so the jet's front row
-// keeps the scene's gap to the target.
-inline constexpr double kPlateFace = 0.5;
-
 template <int D>
 class PlateFace {
  public:
@@ -27,7 +22,7 @@ class PlateFace {
   explicit PlateFace(double diameter) : radius_(0.5 * diameter) {}
 
   // The centre's height above the face plane, and whether the centre is over the face.
-  double height(const Vec<D>& x) const { return x[kAxis] - kPlateFace; }
+  double height(const Vec<D>& x) const { return x[kAxis] - kTargetSurface; }
   bool over_face(Vec<D> x) const {
     x[kAxis] = 0.0;
     return x.squaredNorm() <= radius_ * radius_;
@@ -38,7 +33,7 @@ class PlateFace {
     x[kAxis] = 0.0;
     const double lateral = x.norm();
     if (lateral > radius_) x *= radius_ / lateral;
-    x[kAxis] = kPlateFace;
+    x[kAxis] = kTargetSurface;
     return x;
   }
   // Grain x's mirror image through its nearest face point: r_i - r_j then spans grain and image

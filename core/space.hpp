@@ -29,7 +29,11 @@ struct PeriodicBox {
   // a - b shifted by whole box lengths into [-box/2, box/2].
   template <class V>
   V separation(const V& a, const V& b) const {
-    V r = a - b;
+    return minimum_image<V>(a - b);
+  }
+  // The separation r shifted so.
+  template <class V>
+  V minimum_image(V r) const {
     for (int d = 0; d < D; ++d) r[d] -= box[d] * std::nearbyint(r[d] * inv_box[d]);
     return r;
   }

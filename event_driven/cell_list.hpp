@@ -14,9 +14,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "core/cell_sizing.hpp"
+#include "core/space.hpp"
 #include "event_driven/flight.hpp"
 
 namespace granjet::ed {
@@ -49,11 +52,10 @@ class CellList {
   static CellList periodic(const Vec<D>& box, double diameter, std::size_t grains) {
     CellList cells(grains);
     cells.periodic_ = true;
+    cells.space_.emplace(box);
     cells.lo_ = Vec<D>::Zero();
     cells.box_ = box;
-    double edge = diameter;
-    const double max_cells = kMaxCellsPerGrain * static_cast<double>(grains) + 4096.0;
-    while (cell_count(box, edge) > max_cells) edge *= 1.25;
+    const double edge = capped_cell_edge<D>(box, diameter, max_cells(grains), CellFit::kTile);
     for (int a = 0; a < D; ++a) {
       cells.n_[a] = static_cast<int>(std::floor(box[a] / edge));
       if (cells.n_[a] < 3)
@@ -70,11 +72,8 @@ class CellList {
     CellList cells(grains);
     cells.lo_ = lo;
     cells.box_ = hi - lo;
-    double edge = diameter * (1.0 + 2.0 * kOpenHysteresis);
-    // A few grains scattered far away must not allocate a huge empty grid: larger cells stay
-    // correct, only slower.
-    const double max_cells = kMaxCellsPerGrain * static_cast<double>(grains) + 4096.0;
-    while (cell_count(cells.box_, edge) > max_cells) edge *= 1.25;
+    const double edge = capped_cell_edge<D>(cells.box_, diameter * (1.0 + 2.0 * kOpenHysteresis),
+                                            max_cells(grains), CellFit::kCover);
     for (int a = 0; a < D; ++a) {
       cells.n_[a] = std::max(1, static_cast<int>(std::ceil(cells.box_[a] / edge)));
       cells.edge_[a] = edge;
@@ -142,16 +141,13 @@ class CellList {
   }
 
   // The periodic image of a separation vector with the shortest components.
-  Vec<D> minimum_image(Vec<D> dr) const {
-    if (periodic_)
-      for (int a = 0; a < D; ++a) dr[a] -= box_[a] * std::nearbyint(dr[a] / box_[a]);
-    return dr;
+  Vec<D> minimum_image(const Vec<D>& dr) const {
+    return periodic_ ? space_->minimum_image(dr) : dr;
   }
 
   // The image of a position inside a periodic box, [0, box) per axis.
   Vec<D> wrap(Vec<D> x) const {
-    if (periodic_)
-      for (int a = 0; a < D; ++a) x[a] -= box_[a] * std::floor(x[a] / box_[a]);
+    if (periodic_) space_->wrap(x);
     return x;
   }
 
@@ -176,7 +172,12 @@ class CellList {
 
  private:
   static constexpr double kOpenHysteresis = 0.05;  // in diameters
+  // Empty cells cost memory only (an event touches the cells around it), and narrow cells
+  // keep every prediction's scan short: many per grain (core/cell_sizing.hpp).
   static constexpr double kMaxCellsPerGrain = 128.0;
+  static double max_cells(std::size_t grains) {
+    return kMaxCellsPerGrain * static_cast<double>(grains) + 4096.0;
+  }
 
   // Grain index `none_` (one past the last grain) ends every cell's list, and its own next is
   // itself, so that walking on past the end of a list stays at the end.
@@ -185,12 +186,6 @@ class CellList {
         coords_(grains),
         next_(grains + 1, none_),
         prev_(grains, none_) {}
-
-  static double cell_count(const Vec<D>& extent, double edge) {
-    double n = 1.0;
-    for (int a = 0; a < D; ++a) n *= std::max(1.0, std::ceil(extent[a] / edge));
-    return n;
-  }
 
   // One cell more than the grid: the always empty stand-in for neighbours beyond an open edge.
   void allocate() {
@@ -307,7 +302,8 @@ class CellList {
   std::uint32_t none_;
   bool periodic_ = false;
   Vec<D> lo_ = Vec<D>::Zero();
-  Vec<D> box_ = Vec<D>::Zero();  // periodic: the box lengths
+  Vec<D> box_ = Vec<D>::Zero();          // periodic: the box lengths
+  std::optional<PeriodicBox<D>> space_;  // periodic: the minimum image and the wrap
   std::array<int, D> n_{};
   Vec<D> edge_ = Vec<D>::Zero();
   Vec<D> hysteresis_ = Vec<D>::Zero();

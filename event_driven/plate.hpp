@@ -67,7 +67,7 @@ class Plate : public PlateFace<D> {
     double first = kNever;
     for (const double side : {-1.0, 1.0}) {
       Vec<D> end = Vec<D>::Zero();
-      end[kAxis] = kPlateFace;
+      end[kAxis] = kTargetSurface;
       end[1 - kAxis] = side * this->radius_;
       const PairQuadratic q = pair_quadratic(Vec<D>(x - end), v, r);
       const double t = ed::contact_delay(q.b, q.c, q.a);

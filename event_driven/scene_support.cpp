@@ -33,8 +33,8 @@ SceneSupport scene_support(const Scene& scene) {
     support.notes.push_back("contact.friction = " + number_text(scene.contact.friction) +
                             " is ignored (hard grains are frictionless)");
   support.notes.push_back(
-      "contact.contact_time, run.dt, run.integrator and run.skin have no hard-core meaning and "
-      "are ignored");
+      "contact.model, contact.contact_time, run.dt, run.integrator and run.skin have no "
+      "hard-core meaning and are ignored");
   return support;
 }
 

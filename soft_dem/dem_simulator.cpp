@@ -580,6 +580,13 @@ std::string contact_law_refusal(const Scene& scene) {
       });
 }
 
+double peak_overlap(const Scene& scene, double speed) {
+  return with_contact_law(scene.contact.model,
+                          [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
+                            return LawOf<3, false>::peak_overlap(scene.contact, speed);
+                          });
+}
+
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
   return with_contact_law(

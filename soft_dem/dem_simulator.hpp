@@ -134,6 +134,9 @@ std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene);
 // Why the scene's contact.model cannot run in its dimension, or empty (scene_support.hpp).
 std::string contact_law_refusal(const Scene& scene);
 
+// The scene's contact law's peak_overlap (linear_spring_dashpot.hpp says what a law provides).
+double peak_overlap(const Scene& scene, double speed);
+
 extern template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 extern template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
 

@@ -158,6 +158,14 @@ struct HertzMindlinOf {
   // c_n = damping sqrt(S_n), since alpha sqrt(m_eff K) delta^(1/4) = alpha sqrt(2/3 m_eff S_n).
   double damping;
 
+  // Undamped, the kinetic energy m_eff v^2/2 is all stored at the turning point, (2/5) K
+  // delta^(5/2): delta = (5 m_eff v^2 / (4 K))^(2/5) (Johnson ch. 11), for two unit grains.
+  static double peak_overlap(const ContactSpec& spec, double speed) {
+    const HertzCoefficients h = hertz_coefficients(spec);
+    const double k = 4.0 / 3.0 * h.modulus * std::sqrt(0.25);
+    return std::pow(1.25 * h.mass * speed * speed / k, 0.4);
+  }
+
   Wall against_wall() const {
     HertzCoefficients w = c;
     w.modulus *= 2.0;

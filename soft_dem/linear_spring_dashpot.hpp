@@ -16,12 +16,16 @@
 //                                  template over V = Vec<D> and LaneVec<D> that selects rather
 //                                  than branches (the force pass's loop must vectorise);
 //   elastic_energy(g, shear)       for the energy books;
+//   peak_overlap(spec, v)          the deepest overlap of two unit grains meeting head-on at
+//                                  relative normal speed v, undamped (an upper bound), for the
+//                                  run budget's refusal of scenes that would blow up;
 //   Wall, against_wall()           the law of a grain against the immovable plate, where the
 //                                  geometry's lever_j is 0 and the partner has infinite mass.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string_view>
 #include <type_traits>
 
@@ -47,6 +51,12 @@ struct LinearSpringDashpot {
   ContactCoefficients c;
   double dt;
   double inv_kt;  // sliding resets the spring often: multiply, do not divide
+
+  // [3.1] with k_n from [3.4]: the undamped amplitude v / omega_0 = v t_c / sqrt(pi^2 + ln^2 e),
+  // at most v t_c / pi.
+  static double peak_overlap(const ContactSpec& spec, double speed) {
+    return speed * spec.contact_time / std::numbers::pi;
+  }
 
   // A grain against the immovable plate moves with its own mass, a pair with half of it: twice
   // the pair's springs and dashpots give the pair's e and t_c, [3.4] and [3.5] (equal masses

@@ -20,7 +20,7 @@ Vec<2> after_flight(const Vec<2>& x, const Vec<2>& v, double t_end) {
   s.kind = SceneKind::kJet;
   s.dimension = 2;
   s.wall.kind = WallKind::kPlate;
-  s.wall.diameter = 10.0;  // end points at (kPlateFace, +-5)
+  s.wall.diameter = 10.0;  // end points at (kTargetSurface, +-5)
   s.contact.restitution = kE;
   s.contact.friction = 0.0;
   s.ed.restitution_law = RestitutionLaw::kConstant;
@@ -41,7 +41,7 @@ TYPED_TEST_SUITE(PlateRimConformance, TwoDimensional);
 // the line with e times its speed and no sideways kick.
 TYPED_TEST(PlateRimConformance, Eq2_1_AGrainAimedAtTheEdgeBouncesBackAlongTheLine) {
   using Backend = typename TypeParam::Backend;
-  const Vec<2> edge(kPlateFace, 5.0);
+  const Vec<2> edge(kTargetSurface, 5.0);
   const Vec<2> u = Vec<2>(1.0, 1.0).normalized();
   const Vec<2> v = after_flight<Backend>(edge + (0.5 + kGap) * u, -u, 0.6);
   EXPECT_NEAR(v.dot(u) / kE, 1.0, Backend::kRestitutionTolerance);
@@ -52,7 +52,7 @@ TYPED_TEST(PlateRimConformance, Eq2_1_AGrainAimedAtTheEdgeBouncesBackAlongTheLin
 // the front; it neither lands deep in the face nor slips through.
 TYPED_TEST(PlateRimConformance, AGrainSlidingInOverTheEdgeIsTurnedToTheFront) {
   using Backend = typename TypeParam::Backend;
-  const Vec<2> v = after_flight<Backend>(Vec<2>(kPlateFace + 0.2, 5.8), Vec<2>(0.0, -1.0), 1.0);
+  const Vec<2> v = after_flight<Backend>(Vec<2>(kTargetSurface + 0.2, 5.8), Vec<2>(0.0, -1.0), 1.0);
   EXPECT_GT(v.x(), 0.3);
   EXPECT_LT(v.norm(), 1.0);
 }

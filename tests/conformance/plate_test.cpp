@@ -33,7 +33,7 @@ TYPED_TEST(PlateConformance, Eq2_1_HeadOnOnThePlateGivesTheRestitution) {
     Vec<D> x = Vec<D>::Zero(), v = Vec<D>::Zero();
     // binary.ini's gap: a contact that starts exactly on a step (a gap of 25 steps, 0.05) gives
     // AB2 e = 0.513 for 0.5 against a pair of grains as against the plate.
-    x[kAxis] = kPlateFace + 0.5 + 0.0537;
+    x[kAxis] = kTargetSurface + 0.5 + 0.0537;
     v[kAxis] = -1.0;
     grains.add(1, GrainKind::kFree, x, v, 0.5, 1.0);
     x[1 - kAxis % 2] = 12.0;  // beside the edge (radius 11), its centre never over the face

@@ -218,7 +218,7 @@ template <int D>
 Particles<D> one_grain(double lateral, double height, double closing, double sideways) {
   Vec<D> x = Vec<D>::Zero(), v = Vec<D>::Zero();
   const int axis = kJetAxis<D>, across = (axis + 1) % D;
-  x[axis] = kPlateFace + height;
+  x[axis] = kTargetSurface + height;
   x[across] = lateral;
   v[axis] = -closing;
   v[across] = sideways;
@@ -248,7 +248,7 @@ TYPED_TEST(EdSimulatorCase, Eq2_1_PlateHeadOnReturnsWithExactlyETimesTheSpeed) {
   ASSERT_EQ(sim.stats().collisions, 1);
   EXPECT_EQ(along_axis<D>(sim.particles().velocity()[0]), 0.75);
   EXPECT_EQ(across_axis<D>(sim.particles().velocity()[0]), 0.0);
-  EXPECT_DOUBLE_EQ(along_axis<D>(sim.particles().position()[0]), kPlateFace + 0.5 + 1.5);
+  EXPECT_DOUBLE_EQ(along_axis<D>(sim.particles().position()[0]), kTargetSurface + 0.5 + 1.5);
   EXPECT_DOUBLE_EQ(sim.energy().dissipated, 0.5 * (1.0 - 0.75 * 0.75));
   std::vector<PairImpulse<D>> transfers;
   sim.collect_transfers(transfers);
@@ -261,7 +261,7 @@ TYPED_TEST(EdSimulatorCase, Eq2_1_PlateHeadOnReturnsWithExactlyETimesTheSpeed) {
   const Vec<D> r_ij = t.position_i - t.position_j;
   EXPECT_NEAR(along_axis<D>(r_ij), 1.0, 1e-12);
   EXPECT_EQ(across_axis<D>(r_ij), 0.0);
-  EXPECT_NEAR(along_axis<D>(t.position_j), kPlateFace - 0.5, 1e-12);
+  EXPECT_NEAR(along_axis<D>(t.position_j), kTargetSurface - 0.5, 1e-12);
 }
 
 TYPED_TEST(EdSimulatorCase, Eq2_1_ObliquePlateHitKeepsTheTangentialVelocity) {
@@ -361,7 +361,7 @@ void expect_jet_force_is_the_momentum_flux(std::int64_t grains, double t_end) {
   sim->record_transfers(true);
   // The column arrives from t ~ (front - face)/u0 to that plus length/u0; the force is sampled
   // over the middle half of its arrival.
-  const double arrive = (front - 0.5 - kPlateFace) / u0;
+  const double arrive = (front - 0.5 - kTargetSurface) / u0;
   const double from = arrive + 0.25 * length / u0, to = arrive + 0.75 * length / u0;
   Vec<D> plate_impulse = Vec<D>::Zero();
   double window_impulse = 0.0;

@@ -20,7 +20,7 @@ Scene plate_scene() {
   s.kind = SceneKind::kJet;
   s.dimension = 2;
   s.wall.kind = WallKind::kPlate;
-  s.wall.diameter = 10.0;  // rim at y = +-5, face at x = kPlateFace
+  s.wall.diameter = 10.0;  // rim at y = +-5, face at x = kTargetSurface
   s.contact.restitution = kE;
   s.contact.friction = 0.0;
   return s;
@@ -36,16 +36,16 @@ Vec<2> after_flight(const Vec<2>& x, const Vec<2>& v, double t_end) {
 
 // A grain that got behind the face meets its back: it comes off with e times its speed.
 TEST(PlateRim, Eq2_1_TheBackOfTheFaceReflectsGrainsBehindIt) {
-  const Vec<2> v = after_flight(Vec<2>(kPlateFace - 0.5 - kGap, 0.0), Vec<2>(1.0, 0.0), 0.6);
+  const Vec<2> v = after_flight(Vec<2>(kTargetSurface - 0.5 - kGap, 0.0), Vec<2>(1.0, 0.0), 0.6);
   EXPECT_NEAR(v.x() / -kE, 1.0, 0.005);
 }
 
 TEST(PlateRim, NearestFacePointAndMirrorOverTheFaceAndBesideIt) {
   const PlateFace<3> face(10.0);
   const Vec<3> over(1.0, 2.0, 3.0), beside(6.0, 8.0, 2.0);
-  EXPECT_EQ(face.nearest_point(over), Vec<3>(1.0, 2.0, kPlateFace));
-  EXPECT_EQ(face.mirror(over), Vec<3>(1.0, 2.0, 2.0 * kPlateFace - 3.0));
-  EXPECT_TRUE(face.nearest_point(beside).isApprox(Vec<3>(3.0, 4.0, kPlateFace), 1e-15));
+  EXPECT_EQ(face.nearest_point(over), Vec<3>(1.0, 2.0, kTargetSurface));
+  EXPECT_EQ(face.mirror(over), Vec<3>(1.0, 2.0, 2.0 * kTargetSurface - 3.0));
+  EXPECT_TRUE(face.nearest_point(beside).isApprox(Vec<3>(3.0, 4.0, kTargetSurface), 1e-15));
 }
 
 }  // namespace
