@@ -24,6 +24,9 @@ void run(benchmark::State& state, const granjet::Scene& scene, double warm_up, d
   // Per collision: the other events (cell crossings, stale predictions) that cost calendar work.
   state.counters["crossings/coll"] =
       static_cast<double>(after.cell_crossings - before.cell_crossings) / collisions;
+  // Dense gases: neighbour-list renewals (event_driven/neighbour_shells.hpp) instead.
+  state.counters["renewals/coll"] =
+      static_cast<double>(after.neighbour_rebuilds - before.neighbour_rebuilds) / collisions;
   state.counters["events/coll"] = static_cast<double>(after.events - before.events) / collisions;
 }
 

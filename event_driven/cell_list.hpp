@@ -145,6 +145,9 @@ class CellList {
     return periodic_ ? space_->minimum_image(dr) : dr;
   }
 
+  // The periodic box itself (periodic lists only), for loops that take many minimum images.
+  const PeriodicBox<D>& space() const { return *space_; }
+
   // The image of a position inside a periodic box, [0, box) per axis.
   Vec<D> wrap(Vec<D> x) const {
     if (periodic_) space_->wrap(x);

@@ -4,7 +4,9 @@
 // soft backend's removal region for the jets.
 //
 // Every grain has one entry in the event calendar, its earliest event: the best collision
-// found by its scans, or leaving its cell, whichever comes first. A scan keeps the earliest and
+// found by its scans, or leaving its cell (dense periodic gases: leaving the shell of its
+// neighbour list, event_driven/neighbour_shells.hpp), whichever comes first. A scan keeps the
+// earliest and
 // the runner-up partner, each with that partner's event counter; when the event pops and the
 // counter has moved on (the partner collided meanwhile), the event is stale: the runner-up
 // takes over if it is still valid, else the grain scans again (lazy invalidation, DynamO
@@ -26,8 +28,10 @@
 #include "event_driven/collapse_detector.hpp"
 #include "event_driven/event_calendar.hpp"
 #include "event_driven/flight.hpp"
+#include "event_driven/neighbour_shells.hpp"
 #include "event_driven/plate.hpp"
 #include "event_driven/restitution.hpp"
+#include "event_driven/two_earliest.hpp"
 
 namespace granjet::ed {
 
@@ -80,6 +84,7 @@ class EdSimulator final : public Simulator<D> {
   void collide(std::uint32_t i, std::uint32_t j);
   void hit_plate(std::uint32_t i);
   void cross_cell(std::uint32_t i);
+  void renew_shell(std::uint32_t i);
   void remove(std::uint32_t i);
   bool still_valid(const Prediction& p) const {
     return p.time == kNever || events_of_[p.partner] == p.partner_events;
@@ -88,11 +93,13 @@ class EdSimulator final : public Simulator<D> {
   // brought in.
   void predict_all(std::uint32_t i);
   void predict_new_layer(std::uint32_t i, const Crossing& moved);
-  // Merges the collisions with the grains gathered in hood_ into i's earliest and runner-up,
+  // Merges the collisions with the n grains grain[0..n) into i's earliest and runner-up,
   // starting from `best` and `second` (taken by value: a fresh scan's empty predictions then
-  // never pass through memory).
+  // never pass through memory); separation(m, x) is the separation of grain[m] at x from i.
+  template <class Separation>
+  void merge(std::uint32_t i, const std::uint32_t* grain, std::size_t n, Separation separation,
+             Prediction best, Prediction second);
   void merge_hood(std::uint32_t i, Prediction best, Prediction second);
-  bool echo(std::uint32_t i, std::uint32_t k, const Vec<D>& dr) const;
   void predict_exit(std::uint32_t i);
   void schedule(std::uint32_t i);
   void shift_time_origin();
@@ -112,9 +119,12 @@ class EdSimulator final : public Simulator<D> {
   Restitution restitution_;
   std::optional<Plate<D>> plate_;
   std::uint32_t plate_partner_;  // the plate's index as a prediction partner: one past the grains
+  // The cells: of the grains (crossings), or of the list centres when shells_ holds lists.
   CellList<D> cells_;
-  typename CellList<D>::Neighbourhood hood_;      // scratch of the predictions
-  std::vector<double> pair_b_, pair_c_, pair_a_;  // and the pairs' quadratics (contact_delay)
+  std::optional<NeighbourShells<D>> shells_;  // dense periodic gases (listed())
+  typename CellList<D>::Neighbourhood hood_;  // scratch of the predictions
+  // And the pairs' quadratics (contact_delay), padded to whole kEarliestLanes.
+  std::vector<double> pair_b_, pair_c_, pair_a_;
   Calendar calendar_;
   CollapseDetector collapse_;
 
@@ -124,7 +134,7 @@ class EdSimulator final : public Simulator<D> {
   // take-over) is not known.
   std::vector<Prediction> next_collision_;
   std::vector<Prediction> runner_up_;
-  std::vector<Crossing> next_exit_;
+  std::vector<Crossing> next_exit_;  // or, listed, the renewal (its time only)
   // Bumped whenever the velocity changes or removal; the plate's (last entry) never is.
   std::vector<std::uint32_t> events_of_;
   std::vector<std::uint32_t> last_partner_;  // partner of the last collision (self if none)
