@@ -39,8 +39,9 @@ double largest_diameter(const Particles<D>& p) {
 constexpr double kListedPhi = 0.42;
 
 template <int D>
-bool listed(const Scene& scene, const Particles<D>& p) {
-  return D == 3 && scene.periodic() && scene.gas.phi >= kListedPhi &&
+bool listed(const Scene& scene, const Particles<D>& p, NeighbourSearch search) {
+  return search == NeighbourSearch::kByDensity && D == 3 && scene.periodic() &&
+         scene.gas.phi >= kListedPhi &&
          NeighbourShells<D>::fits(gas_lattice<D>(scene.gas).box, largest_diameter(p));
 }
 
@@ -48,10 +49,10 @@ bool listed(const Scene& scene, const Particles<D>& p) {
 // cover the grains' bounding box, for the jets also the removal region, with two cells to spare
 // so that a grain leaving the region still crosses a cell face (the moment it is removed).
 template <int D>
-CellList<D> make_cells(const Scene& scene, const Particles<D>& p) {
+CellList<D> make_cells(const Scene& scene, const Particles<D>& p, bool listed) {
   const double d = largest_diameter(p);
   const Vec<D> box = gas_lattice<D>(scene.gas).box;
-  if (listed(scene, p)) return NeighbourShells<D>::cells(box, d, p.size());
+  if (listed) return NeighbourShells<D>::cells(box, d, p.size());
   if (scene.periodic()) return CellList<D>::periodic(box, d, p.size());
   Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
   if (!p.empty()) lo = hi = p.position()[0];
@@ -76,18 +77,19 @@ CellList<D> make_cells(const Scene& scene, const Particles<D>& p) {
 }  // namespace
 
 template <int D>
-EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verification verify)
+EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verification verify,
+                            NeighbourSearch search)
     : scene_(scene),
       grains_(std::move(grains)),
       verify_(verify),
       restitution_(scene),
       plate_partner_(static_cast<std::uint32_t>(grains_.size())),
-      cells_(make_cells<D>(scene, grains_)),
+      cells_(make_cells<D>(scene, grains_, listed(scene, grains_, search))),
       calendar_(grains_.size()),
       collapse_(grains_.size()) {
   const std::size_t n = grains_.size();
   if (scene.has_plate()) plate_.emplace(scene.wall.diameter);
-  if (listed(scene, grains_))
+  if (listed(scene, grains_, search))
     shells_.emplace(std::vector<double>(grains_.radius().begin(), grains_.radius().end()));
   flight_.resize(n);
   std::int64_t free_grains = 0;
@@ -112,7 +114,7 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
 template <int D>
 void EdSimulator<D>::predict_anew() {
   const std::size_t n = flight_.size();
-  cells_ = make_cells<D>(scene_, grains_);
+  cells_ = make_cells<D>(scene_, grains_, shells_.has_value());
   if (shells_) {
     // Every grain is at the clock here: its position in the box becomes its centre.
     std::vector<Vec<D>> x(n);
@@ -258,6 +260,11 @@ void EdSimulator<D>::collide(std::uint32_t i, std::uint32_t j) {
   Flight<D>& fi = flight_[i];
   Flight<D>& fj = flight_[j];
   const bool j_moves = !fixed(j);
+  if (shells_) {
+    // Both grains scan their lists below: their partners' flights are fetched meanwhile.
+    for (std::uint32_t k : shells_->of(i)) __builtin_prefetch(&flight_[k]);
+    for (std::uint32_t k : shells_->of(j)) __builtin_prefetch(&flight_[k]);
+  }
   fi.stream_to(clock_);
   if (j_moves) fj.stream_to(clock_);
   const Vec<D> dr = cells_.minimum_image(fj.x - fi.x);
@@ -580,7 +587,13 @@ void EdSimulator<D>::take_snapshot() {
 
 template <int D>
 void EdSimulator<D>::collect_transfers(std::vector<PairImpulse<D>>& out) {
-  out.insert(out.end(), transfers_.begin(), transfers_.end());
+  // An empty `out` (the gas observer's, at each sample: some 10^4 impulses) takes the buffer
+  // itself rather than a copy; the buffers then take turns, each keeping its room.
+  if (out.empty()) {
+    out.swap(transfers_);
+  } else {
+    out.insert(out.end(), transfers_.begin(), transfers_.end());
+  }
   transfers_.clear();
 }
 

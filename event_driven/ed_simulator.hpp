@@ -39,13 +39,19 @@ namespace granjet::ed {
 // at any advance_to(); a violation throws BlowUpError.
 enum class Verification { kOff, kOn };
 
+// How predictions find the grains in reach: kByDensity as the backend chooses (neighbour lists
+// for dense 3D periodic gases, ed_simulator.cpp), kCells always by the cells with crossings
+// (tests and benchmarks compare the two on the same state).
+enum class NeighbourSearch { kByDensity, kCells };
+
 template <int D>
 class EdSimulator final : public Simulator<D> {
  public:
   // Wall grains must have infinite mass (GrainKind::kWall, inverse mass 0). A jet scene with
   // wall.kind = plate has the plate as its target (make_ed_simulator leaves out the target
   // grains built for the scene).
-  EdSimulator(const Scene& scene, Particles<D> grains, Verification verify = Verification::kOff);
+  EdSimulator(const Scene& scene, Particles<D> grains, Verification verify = Verification::kOff,
+              NeighbourSearch search = NeighbourSearch::kByDensity);
 
   std::string_view backend() const override { return "event_driven"; }
   // Processes every event up to t and takes the snapshot at t. Throws BlowUpError on inelastic

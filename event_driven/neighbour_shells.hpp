@@ -138,7 +138,7 @@ class NeighbourShells {
   std::vector<double> radius_;
   std::vector<Vec<D>> centre_;
   std::vector<std::uint32_t> count_;
-  std::size_t stride_ = 24;
+  std::size_t stride_ = 32;
   std::vector<std::uint32_t> list_;  // grain i's neighbours at [i * stride_, + count_[i])
 };
 
