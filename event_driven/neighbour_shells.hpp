@@ -126,7 +126,7 @@ class NeighbourShells {
   }
 
   // A list is full: every list gets twice the room (rare: a grain has some 16 neighbours at
-  // phi = 0.45, and room starts at 24).
+  // phi = 0.45, and room starts at 32).
   void widen() {
     std::vector<std::uint32_t> wider(list_.size() * 2);
     for (std::size_t i = 0; i < count_.size(); ++i)
