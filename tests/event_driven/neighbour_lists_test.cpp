@@ -11,11 +11,13 @@
 #include <set>
 #include <utility>
 
+#include "app/scene_file.hpp"
 #include "core/initial_state.hpp"
 #include "core/random.hpp"
 #include "core/state_archive.hpp"
 #include "event_driven/ed_simulator.hpp"
 #include "event_driven/neighbour_shells.hpp"
+#include "event_driven/scene_support.hpp"
 
 namespace granjet::ed {
 namespace {
@@ -92,16 +94,10 @@ TEST(NeighbourShells, RenewalComesWhenTheGrainReachesItsShell) {
   EXPECT_EQ(shells.exit_delay(0, centre, Vec<3>::Zero()), kNever);
 }
 
+// The shipped elastic gas at phi = 0.45, as the event-driven backend takes it.
 Scene dense_gas(std::int64_t grains) {
-  Scene s;
-  s.kind = SceneKind::kGas;
-  s.dimension = 3;
-  s.contact.restitution = 1.0;
-  s.contact.friction = 0.0;
-  s.ed.restitution_law = RestitutionLaw::kConstant;
-  s.gas.phi = 0.45;
-  s.gas.grains = grains;
-  return s;
+  return hard_scene(load_scene(std::string(GRANJET_SCENES_DIR) + "/gas3d.ini",
+                               {"gas.phi=0.45", "gas.grains=" + std::to_string(grains)}));
 }
 
 // Each pair's collisions in order, as the impulses on the pair's first grain.
