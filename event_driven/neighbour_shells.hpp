@@ -46,6 +46,7 @@ class NeighbourShells {
       : radius_(std::move(radius)),
         centre_(radius_.size(), Vec<D>::Zero()),
         count_(radius_.size(), 0),
+        mark_(radius_.size(), 0),
         list_(radius_.size() * stride_) {}
 
   std::span<const std::uint32_t> of(std::uint32_t grain) const {
@@ -70,16 +71,29 @@ class NeighbourShells {
     }
   }
 
-  // Makes x (in the box) the grain's centre and lists its neighbours anew.
+  // Makes x (in the box) the grain's centre and lists its neighbours anew. Most of them stay
+  // (the grain moved a fraction of the shell): only those that come or go have their own lists
+  // changed, so the others' lists are not even read. The old neighbours are marked to tell them.
   void renew(std::uint32_t i, const Vec<D>& x, CellList<D>& cells,
              typename CellList<D>::Neighbourhood& hood) {
-    for (std::uint32_t k : of(i)) unlist(k, i);
+    const std::span<const std::uint32_t> old = of(i);
+    was_.assign(old.begin(), old.end());
+    ++stamp_;
+    for (std::uint32_t k : was_) mark_[k] = stamp_;
     count_[i] = 0;
     centre_[i] = x;
     cells.remove(i);
     cells.insert(i, x);
     cells.gather(i, hood);
-    for_each_near(i, hood, [&](std::uint32_t k) { link(i, k); });
+    for_each_near(i, hood, [&](std::uint32_t k) {
+      append(i, k);
+      if (mark_[k] == stamp_)
+        mark_[k] = 0;  // stays: k lists i already
+      else
+        append(k, i);
+    });
+    for (std::uint32_t k : was_)
+      if (mark_[k] == stamp_) unlist(k, i);  // left the shell
   }
 
   // When the grain at x (at its own time) with velocity v is (kShell - 1) r_i from its centre:
@@ -138,6 +152,9 @@ class NeighbourShells {
   std::vector<double> radius_;
   std::vector<Vec<D>> centre_;
   std::vector<std::uint32_t> count_;
+  std::vector<std::uint64_t> mark_;  // == stamp_: listed before the renewal under way
+  std::uint64_t stamp_ = 0;
+  std::vector<std::uint32_t> was_;  // the list before the renewal under way
   std::size_t stride_ = 32;
   std::vector<std::uint32_t> list_;  // grain i's neighbours at [i * stride_, + count_[i])
 };
