@@ -43,11 +43,12 @@ class NeighbourShells {
   }
 
   explicit NeighbourShells(std::vector<double> radius)
-      : radius_(std::move(radius)),
-        centre_(radius_.size(), Vec<D>::Zero()),
-        count_(radius_.size(), 0),
-        mark_(radius_.size(), 0),
-        list_(radius_.size() * stride_) {}
+      : centre_(radius.size()),
+        count_(radius.size(), 0),
+        mark_(radius.size(), 0),
+        list_(radius.size() * stride_) {
+    for (std::size_t i = 0; i < radius.size(); ++i) centre_[i].radius = radius[i];
+  }
 
   std::span<const std::uint32_t> of(std::uint32_t grain) const {
     return {list_.data() + grain * stride_, count_[grain]};
@@ -59,7 +60,7 @@ class NeighbourShells {
              typename CellList<D>::Neighbourhood& hood) {
     std::fill(count_.begin(), count_.end(), 0);
     for (std::uint32_t i = 0; i < x.size(); ++i) {
-      centre_[i] = x[i];
+      centre_[i].x = x[i];
       if (live[i]) cells.insert(i, x[i]);
     }
     for (std::uint32_t i = 0; i < x.size(); ++i) {
@@ -81,7 +82,7 @@ class NeighbourShells {
     ++stamp_;
     for (std::uint32_t k : was_) mark_[k] = stamp_;
     count_[i] = 0;
-    centre_[i] = x;
+    centre_[i].x = x;
     cells.remove(i);
     cells.insert(i, x);
     cells.gather(i, hood);
@@ -99,8 +100,8 @@ class NeighbourShells {
   // When the grain at x (at its own time) with velocity v is (kShell - 1) r_i from its centre:
   // the larger root of |x - centre + v t|^2 = reach^2, cancellation-free for either sign of b.
   double exit_delay(std::uint32_t i, const Vec<D>& x, const Vec<D>& v) const {
-    const Vec<D> d = x - centre_[i];
-    const double reach = (kShell - 1.0) * radius_[i];
+    const Vec<D> d = x - centre_[i].x;
+    const double reach = (kShell - 1.0) * centre_[i].radius;
     const double a = v.squaredNorm(), b = d.dot(v), c = d.squaredNorm() - reach * reach;
     if (a == 0.0) return kNever;
     const double s = std::sqrt(std::max(b * b - a * c, 0.0));
@@ -114,8 +115,8 @@ class NeighbourShells {
                      Near near) const {
     for (std::size_t m = 0; m < hood.size; ++m) {
       const std::uint32_t k = hood.grain[m];
-      const double reach = kShell * (radius_[i] + radius_[k]);
-      const Vec<D> dr = centre_[k] + hood.shift[hood.image[m]] - centre_[i];
+      const double reach = kShell * (centre_[i].radius + centre_[k].radius);
+      const Vec<D> dr = centre_[k].x + hood.shift[hood.image[m]] - centre_[i].x;
       if (k != i && dr.squaredNorm() < reach * reach) near(k);
     }
   }
@@ -149,8 +150,12 @@ class NeighbourShells {
     stride_ *= 2;
   }
 
-  std::vector<double> radius_;
-  std::vector<Vec<D>> centre_;
+  // A renewal reads both of some 100 grains gathered: they share a cache line.
+  struct Centre {
+    Vec<D> x = Vec<D>::Zero();
+    double radius = 0.0;
+  };
+  std::vector<Centre> centre_;
   std::vector<std::uint32_t> count_;
   std::vector<std::uint64_t> mark_;  // == stamp_: listed before the renewal under way
   std::uint64_t stamp_ = 0;
