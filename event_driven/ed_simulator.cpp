@@ -45,14 +45,13 @@ bool listed(const Scene& scene, const Particles<D>& p, NeighbourSearch search) {
          NeighbourShells<D>::fits(gas_lattice<D>(scene.gas).box, largest_diameter(p));
 }
 
-// Periodic scenes tile their box (with cells for the list centres when listed); open scenes
-// cover the grains' bounding box, for the jets also the removal region, with two cells to spare
-// so that a grain leaving the region still crosses a cell face (the moment it is removed).
+// Periodic scenes tile their box; open scenes cover the grains' bounding box, for the jets also
+// the removal region, with two cells to spare so that a grain leaving the region still crosses
+// a cell face (the moment it is removed).
 template <int D>
-CellList<D> make_cells(const Scene& scene, const Particles<D>& p, bool listed) {
+CellList<D> make_cells(const Scene& scene, const Particles<D>& p) {
   const double d = largest_diameter(p);
   const Vec<D> box = gas_lattice<D>(scene.gas).box;
-  if (listed) return NeighbourShells<D>::cells(box, d, p.size());
   if (scene.periodic()) return CellList<D>::periodic(box, d, p.size());
   Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
   if (!p.empty()) lo = hi = p.position()[0];
@@ -84,13 +83,14 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
       verify_(verify),
       restitution_(scene),
       plate_partner_(static_cast<std::uint32_t>(grains_.size())),
-      cells_(make_cells<D>(scene, grains_, listed(scene, grains_, search))),
+      cells_(make_cells<D>(scene, grains_)),
       calendar_(grains_.size()),
       collapse_(grains_.size()) {
   const std::size_t n = grains_.size();
   if (scene.has_plate()) plate_.emplace(scene.wall.diameter);
   if (listed(scene, grains_, search))
-    shells_.emplace(std::vector<double>(grains_.radius().begin(), grains_.radius().end()));
+    shells_.emplace(std::vector<double>(grains_.radius().begin(), grains_.radius().end()),
+                    gas_lattice<D>(scene.gas).box);
   flight_.resize(n);
   std::int64_t free_grains = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -114,12 +114,12 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
 template <int D>
 void EdSimulator<D>::predict_anew() {
   const std::size_t n = flight_.size();
-  cells_ = make_cells<D>(scene_, grains_, shells_.has_value());
+  cells_ = make_cells<D>(scene_, grains_);
   if (shells_) {
     // Every grain is at the clock here: its position in the box becomes its centre.
     std::vector<Vec<D>> x(n);
     for (std::uint32_t i = 0; i < n; ++i) x[i] = flight_[i].x = cells_.wrap(flight_[i].x);
-    shells_->build(x, alive_, cells_, hood_);
+    shells_->build(x, alive_);
   } else {
     for (std::uint32_t i = 0; i < n; ++i)
       if (alive_[i]) cells_.insert(i, flight_[i].x);
@@ -358,7 +358,7 @@ void EdSimulator<D>::renew_shell(std::uint32_t i) {
   Flight<D>& f = flight_[i];
   f.stream_to(clock_);
   f.x = cells_.wrap(f.x);
-  shells_->renew(i, f.x, cells_, hood_);
+  shells_->renew(i, f.x);
   predict_all(i);
   predict_exit(i);
   schedule(i);
@@ -643,6 +643,15 @@ void EdSimulator<D>::check_plate_contact(std::uint32_t i) const {
 template <int D>
 void EdSimulator<D>::check_no_overlaps() const {
   const double now = time_ - origin_;
+  // Listed, the cells hold no grains (the lists bin their centres apart): the grains are binned
+  // here where they stand, and each pair is taken at its nearest image.
+  std::optional<CellList<D>> binned;
+  if (shells_) {
+    binned.emplace(make_cells<D>(scene_, grains_));
+    for (std::uint32_t i = 0; i < flight_.size(); ++i)
+      if (alive_[i]) binned->insert(i, cells_.wrap(flight_[i].position_at(now)));
+  }
+  const CellList<D>& cells = binned ? *binned : cells_;
   typename CellList<D>::Neighbourhood hood;
   for (std::uint32_t i = 0; i < flight_.size(); ++i) {
     if (!alive_[i] || fixed(i)) continue;
@@ -655,13 +664,15 @@ void EdSimulator<D>::check_no_overlaps() const {
         throw BlowUpError("overlap with the plate: distance " + std::to_string(distance),
                           stats_.events, time_, {grains_.id()[i]});
     }
-    cells_.gather(i, hood);
+    cells.gather(i, hood);
     for (std::size_t m = 0; m < hood.size; ++m) {
       const std::uint32_t k = hood.grain[m];
       if (k == i) continue;
       const double sigma = flight_[i].radius + flight_[k].radius;
-      const double distance =
-          (flight_[k].position_at(now) + hood.shift[hood.image[m]] - x_i).norm();
+      const Vec<D> x_k = flight_[k].position_at(now);
+      const double distance = (binned ? cells_.minimum_image(Vec<D>(x_k - x_i))
+                                      : Vec<D>(x_k + hood.shift[hood.image[m]] - x_i))
+                                  .norm();
       if (distance < (1.0 - kContactTolerance) * sigma)
         throw BlowUpError(
             "overlap: distance " + std::to_string(distance) + " < " + std::to_string(sigma),

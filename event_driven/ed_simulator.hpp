@@ -125,7 +125,7 @@ class EdSimulator final : public Simulator<D> {
   Restitution restitution_;
   std::optional<Plate<D>> plate_;
   std::uint32_t plate_partner_;  // the plate's index as a prediction partner: one past the grains
-  // The cells: of the grains (crossings), or of the list centres when shells_ holds lists.
+  // The cells of the grains (crossings); with lists (shells_), the periodic box alone.
   CellList<D> cells_;
   std::optional<NeighbourShells<D>> shells_;  // dense periodic gases (listed())
   typename CellList<D>::Neighbourhood hood_;  // scratch of the predictions

@@ -8,9 +8,9 @@
 // 16 at phi = 0.45, against 24 in the 27 cells of the cell path).
 //
 // Lists are symmetric: a renewal takes the grain out of its old neighbours' lists and puts it
-// into its new ones'. The centres are binned in a CellList with cells at least kShell d wide,
-// which only renewals touch. The box must be three such cells wide (fits()); the nearest image
-// of a listed pair is then the one within reach (kShell < 2: listed grains are at most
+// into its new ones'. The centres are binned in cells at least kShell d wide (CentreGrid), which
+// only renewals touch. The box must be three such cells wide (fits()); the nearest image of a
+// listed pair is then the one within reach (kShell < 2: listed grains are at most
 // (2 kShell - 1) d < 1.5 kShell d apart).
 #pragma once
 
@@ -20,7 +20,7 @@
 #include <span>
 #include <vector>
 
-#include "event_driven/cell_list.hpp"
+#include "event_driven/centre_grid.hpp"
 #include "event_driven/flight.hpp"
 
 namespace granjet::ed {
@@ -38,17 +38,15 @@ class NeighbourShells {
   static bool fits(const Vec<D>& box, double diameter) {
     return (box.array() >= 3.0 * kShell * diameter).all();
   }
-  static CellList<D> cells(const Vec<D>& box, double diameter, std::size_t grains) {
-    return CellList<D>::periodic(box, kShell * diameter, grains);
-  }
 
-  explicit NeighbourShells(std::vector<double> radius)
-      : centre_(radius.size()),
-        count_(radius.size(), 0),
-        mark_(radius.size(), 0),
-        list_(radius.size() * stride_) {
-    for (std::size_t i = 0; i < radius.size(); ++i) centre_[i].radius = radius[i];
-  }
+  // The grains' radii, in a periodic box that fits() their largest diameter.
+  NeighbourShells(std::vector<double> radius, const Vec<D>& box)
+      : radius_(std::move(radius)),
+        grid_(box, kShell * 2.0 * *std::max_element(radius_.begin(), radius_.end()),
+              radius_.size()),
+        count_(radius_.size(), 0),
+        mark_(radius_.size(), 0),
+        list_(radius_.size() * stride_) {}
 
   std::span<const std::uint32_t> of(std::uint32_t grain) const {
     return {list_.data() + grain * stride_, count_[grain]};
@@ -56,43 +54,39 @@ class NeighbourShells {
 
   // Lists every grain anew around its position x[i] (all in the box), the grains whose `live`
   // is 0 left out.
-  void build(std::span<const Vec<D>> x, std::span<const std::uint8_t> live, CellList<D>& cells,
-             typename CellList<D>::Neighbourhood& hood) {
+  void build(std::span<const Vec<D>> x, std::span<const std::uint8_t> live) {
     std::fill(count_.begin(), count_.end(), 0);
-    for (std::uint32_t i = 0; i < x.size(); ++i) {
-      centre_[i].x = x[i];
-      if (live[i]) cells.insert(i, x[i]);
-    }
+    grid_.clear();
+    for (std::uint32_t i = 0; i < x.size(); ++i)
+      if (live[i]) grid_.insert(i, x[i], radius_[i]);
     for (std::uint32_t i = 0; i < x.size(); ++i) {
       if (!live[i]) continue;
-      cells.gather(i, hood);
-      for_each_near(i, hood, [&](std::uint32_t k) {
-        if (k > i) link(i, k);
-      });
+      const std::size_t n = grid_.gather_within(x[i], radius_[i], kShell, near_);
+      for (std::size_t m = 0; m < n; ++m)
+        if (near_[m] > i) link(i, near_[m]);
     }
   }
 
   // Makes x (in the box) the grain's centre and lists its neighbours anew. Most of them stay
   // (the grain moved a fraction of the shell): only those that come or go have their own lists
   // changed, so the others' lists are not even read. The old neighbours are marked to tell them.
-  void renew(std::uint32_t i, const Vec<D>& x, CellList<D>& cells,
-             typename CellList<D>::Neighbourhood& hood) {
+  void renew(std::uint32_t i, const Vec<D>& x) {
     const std::span<const std::uint32_t> old = of(i);
     was_.assign(old.begin(), old.end());
     ++stamp_;
     for (std::uint32_t k : was_) mark_[k] = stamp_;
     count_[i] = 0;
-    centre_[i].x = x;
-    cells.remove(i);
-    cells.insert(i, x);
-    cells.gather(i, hood);
-    for_each_near(i, hood, [&](std::uint32_t k) {
+    grid_.remove(i);
+    const std::size_t n = grid_.gather_within(x, radius_[i], kShell, near_);
+    grid_.insert(i, x, radius_[i]);
+    for (std::size_t m = 0; m < n; ++m) {
+      const std::uint32_t k = near_[m];
       append(i, k);
       if (mark_[k] == stamp_)
         mark_[k] = 0;  // stays: k lists i already
       else
         append(k, i);
-    });
+    }
     for (std::uint32_t k : was_)
       if (mark_[k] == stamp_) unlist(k, i);  // left the shell
   }
@@ -100,8 +94,8 @@ class NeighbourShells {
   // When the grain at x (at its own time) with velocity v is (kShell - 1) r_i from its centre:
   // the larger root of |x - centre + v t|^2 = reach^2, cancellation-free for either sign of b.
   double exit_delay(std::uint32_t i, const Vec<D>& x, const Vec<D>& v) const {
-    const Vec<D> d = x - centre_[i].x;
-    const double reach = (kShell - 1.0) * centre_[i].radius;
+    const Vec<D> d = x - grid_.centre(i);
+    const double reach = (kShell - 1.0) * radius_[i];
     const double a = v.squaredNorm(), b = d.dot(v), c = d.squaredNorm() - reach * reach;
     if (a == 0.0) return kNever;
     const double s = std::sqrt(std::max(b * b - a * c, 0.0));
@@ -109,18 +103,6 @@ class NeighbourShells {
   }
 
  private:
-  // Calls near(k) for every other grain gathered whose centre is within reach of grain i's.
-  template <class Near>
-  void for_each_near(std::uint32_t i, const typename CellList<D>::Neighbourhood& hood,
-                     Near near) const {
-    for (std::size_t m = 0; m < hood.size; ++m) {
-      const std::uint32_t k = hood.grain[m];
-      const double reach = kShell * (centre_[i].radius + centre_[k].radius);
-      const Vec<D> dr = centre_[k].x + hood.shift[hood.image[m]] - centre_[i].x;
-      if (k != i && dr.squaredNorm() < reach * reach) near(k);
-    }
-  }
-
   void link(std::uint32_t i, std::uint32_t k) {
     append(i, k);
     append(k, i);
@@ -150,12 +132,9 @@ class NeighbourShells {
     stride_ *= 2;
   }
 
-  // A renewal reads both of some 100 grains gathered: they share a cache line.
-  struct Centre {
-    Vec<D> x = Vec<D>::Zero();
-    double radius = 0.0;
-  };
-  std::vector<Centre> centre_;
+  std::vector<double> radius_;
+  CentreGrid<D> grid_;               // each grain's centre: where it stood at its last renewal
+  std::vector<std::uint32_t> near_;  // scratch: the grains within a renewal's shell
   std::vector<std::uint32_t> count_;
   std::vector<std::uint64_t> mark_;  // == stamp_: listed before the renewal under way
   std::uint64_t stamp_ = 0;

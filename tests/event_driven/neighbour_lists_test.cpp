@@ -59,11 +59,9 @@ TEST(NeighbourShells, ListsAreThePairsWithinTheShellAfterBuildAndRenewals) {
     r[i] = 0.35 + 0.15 * rng.uniform();  // polydisperse, largest diameter 1
   }
   ASSERT_TRUE(Shells::fits(box, 1.0));
-  CellList<3> cells = Shells::cells(box, 1.0, n);
-  CellList<3>::Neighbourhood hood;
-  Shells shells(r);
+  Shells shells(r, box);
   const std::vector<std::uint8_t> live(n, 1);
-  shells.build(x, live, cells, hood);
+  shells.build(x, live);
   const PeriodicBox<3> space(box);
   EXPECT_EQ(listed_pairs(shells, n), all_pairs_within(x, r, space));
   std::size_t longest = 0;
@@ -73,18 +71,16 @@ TEST(NeighbourShells, ListsAreThePairsWithinTheShellAfterBuildAndRenewals) {
   for (int round = 0; round < 300; ++round) {
     const auto i = static_cast<std::uint32_t>(rng.below(n));
     for (int a = 0; a < 3; ++a) x[i][a] = box[a] * rng.uniform();
-    shells.renew(i, x[i], cells, hood);
+    shells.renew(i, x[i]);
   }
   EXPECT_EQ(listed_pairs(shells, n), all_pairs_within(x, r, space));
 }
 
 TEST(NeighbourShells, RenewalComesWhenTheGrainReachesItsShell) {
   const Vec<3> box = Vec<3>::Constant(10.0);
-  CellList<3> cells = Shells::cells(box, 1.0, 1);
-  CellList<3>::Neighbourhood hood;
-  Shells shells({0.5});
+  Shells shells({0.5}, box);
   const Vec<3> centre(5.0, 5.0, 5.0);
-  shells.build(std::vector<Vec<3>>{centre}, std::vector<std::uint8_t>{1}, cells, hood);
+  shells.build(std::vector<Vec<3>>{centre}, std::vector<std::uint8_t>{1});
   const double reach = (Shells::kShell - 1.0) * 0.5;
   const Vec<3> v(0.3, -0.4, 1.2);  // |v| = 1.3
   // From the centre, from halfway out moving out, and from halfway out moving back in.
