@@ -241,64 +241,69 @@ class CellList {
   }
 
   // kCount 3: the full stencil, with loops of fixed length that the compiler unrolls; 0: the
-  // counts of the stencil (a layer).
+  // counts of the stencil (a layer). The cells are listed first, then read in one loop whose
+  // count and pointers are locals: the image bytes written may alias any member, which would
+  // force them through memory, the count a loop-carried store and reload per cell.
   template <int kCount>
   void gather_stencil(const Stencil& s, Neighbourhood& out) const {
+    std::array<std::size_t, kStencilCells> cells;
+    std::uint8_t m = 0;
+    std::array<int, D> pick{};
+    walk<D - 1, kCount>(s, 0, pick, out, cells, m);
     // Room for two slots per cell up front; only the rare longer lists check again.
     if (out.grain.size() < 2 * kStencilCells + 2) {
       out.grain.resize(2 * kStencilCells + 2);
       out.image.resize(2 * kStencilCells + 2);
     }
-    out.size = 0;
-    std::uint8_t m = 0;
-    std::array<int, D> pick{};
-    walk<D - 1, kCount>(s, 0, pick, out, m);
+    const std::uint32_t* const head = head_.data();
+    const std::uint32_t* const next = next_.data();
+    const std::uint32_t none = none_;
+    std::uint32_t* slot = out.grain.data();
+    std::uint8_t* slot_image = out.image.data();
+    std::size_t n = 0;
+    for (std::uint8_t c = 0; c < m; ++c) {
+      // Cells hold 0, 1 or 2 grains most of the time, and which is as good as random: the
+      // first two are taken without a data-dependent branch (a slot is written always and kept
+      // only for a real grain), the rare rest by a loop. The grain itself is gathered too: a
+      // pair of a grain with itself never approaches, which costs less than a test per slot.
+      const std::uint32_t k0 = head[cells[c]];
+      const std::uint32_t k1 = next[k0];
+      slot[n] = k0;
+      slot[n + 1] = k1;
+      slot_image[n] = c;
+      slot_image[n + 1] = c;
+      n += (k0 != none) + (k1 != none);
+      for (std::uint32_t k = next[k1]; k != none; k = next[k]) {
+        // Keep two slots of room for each cell still to come.
+        if (out.grain.size() < n + 2 * kStencilCells + 2) {
+          out.grain.resize(2 * out.grain.size() + 2 * kStencilCells);
+          out.image.resize(out.grain.size());
+          slot = out.grain.data();
+          slot_image = out.image.data();
+        }
+        slot[n] = k;
+        slot_image[n++] = c;
+      }
+    }
+    out.size = n;
   }
 
-  // Visits the cells of the stencil, the m-th with image m; pick[a] is the stencil entry taken
+  // Lists the cells of the stencil, the m-th with image m; pick[a] is the stencil entry taken
   // on axis a. (The image shift is written a component at a time: building it in a stack
   // vector a component at a time and storing it whole stalls on store forwarding.)
   template <int A, int kCount>
   void walk(const Stencil& s, std::int64_t base, std::array<int, D>& pick, Neighbourhood& out,
-            std::uint8_t& m) const {
+            std::array<std::size_t, kStencilCells>& cells, std::uint8_t& m) const {
     const int count = kCount > 0 ? kCount : s.count[A];
     for (int o = 0; o < count; ++o) {
       pick[A] = o;
       const std::int64_t cell = base * n_[A] + s.index[A][o];
       if constexpr (A == 0) {
         for (int a = 0; a < D; ++a) out.shift[m][a] = s.shift[a][pick[a]];
-        gather_cell(cell < 0 ? outside_cell_ : static_cast<std::size_t>(cell), m++, out);
+        cells[m++] = cell < 0 ? outside_cell_ : static_cast<std::size_t>(cell);
       } else {
-        walk<A - 1, kCount>(s, cell, pick, out, m);
+        walk<A - 1, kCount>(s, cell, pick, out, cells, m);
       }
-    }
-  }
-
-  // Cells hold 0, 1 or 2 grains most of the time, and which is as good as random: the first
-  // two are taken without a data-dependent branch (a slot is written always and kept only for a
-  // real grain), the rare rest by a loop. The grain itself is gathered too: a pair of a grain
-  // with itself never approaches, which costs less than a test per slot.
-  void gather_cell(std::size_t cell, std::uint8_t image, Neighbourhood& out) const {
-    std::uint32_t* slot = out.grain.data();
-    std::uint8_t* slot_image = out.image.data();
-    std::size_t n = out.size;
-    const std::uint32_t k0 = head_[cell];
-    const std::uint32_t k1 = next_[k0];
-    slot[n] = k0;
-    slot[n + 1] = k1;
-    slot_image[n] = image;
-    slot_image[n + 1] = image;
-    n += (k0 != none_) + (k1 != none_);
-    std::uint32_t k = next_[k1];
-    out.size = n;
-    for (; k != none_; k = next_[k]) {
-      // Keep two slots of room for each cell still to come.
-      if (out.grain.size() < out.size + 2 * kStencilCells + 2) {
-        out.grain.resize(2 * out.grain.size() + 2 * kStencilCells);
-        out.image.resize(out.grain.size());
-      }
-      out.grain[out.size] = k;
-      out.image[out.size++] = image;
     }
   }
 
