@@ -5,7 +5,7 @@
 // of its own, in place of the cell path's crossings). Until then a grain it does not list is at
 // least r_i + r_k away: the centres are kShell (r_i + r_k) apart and each grain is within
 // (kShell - 1) of its radius of its centre. So a prediction scans the listed grains only (some
-// 16 at phi = 0.45, against 24 in the 27 cells of the cell path).
+// 18 at phi = 0.45, against 24 in the 27 cells of the cell path).
 //
 // Lists are symmetric: a renewal takes the grain out of its old neighbours' lists and puts it
 // into its new ones'. The centres are binned in cells at least kShell d wide (CentreGrid), which
@@ -28,10 +28,10 @@ namespace granjet::ed {
 template <int D>
 class NeighbourShells {
  public:
-  // BM_EdGas3d/45 (bench/ed_gas_bench.cpp), collisions/s: 1.3 1.13e6, 1.4 1.26e6, 1.5 (EDMD's)
-  // 1.27e6, 1.6 1.41e6, 1.75 1.41e6; 1.9 renews half as often as 1.6 but scans 25% more
-  // grains, 3% slower. (At phi = 0.3 the wider shells are faster, but the cells faster still.)
-  static constexpr double kShell = 1.6;
+  // The fastest shell on the dense gas (BM_EdGas3d/45, bench/ed_gas_bench.cpp): a wider one
+  // renews less often but scans more grains at every prediction, a narrower one the reverse.
+  // (At phi = 0.3 the wider shells are faster, but the cells faster still.)
+  static constexpr double kShell = 1.7;
   static_assert(kShell > 1.0 && kShell < 2.0, "see the minimum-image note above");
 
   // Whether a periodic box takes cells of kShell * diameter, three per axis.
@@ -122,7 +122,7 @@ class NeighbourShells {
     --count_[i];
   }
 
-  // A list is full: every list gets twice the room (rare: a grain has some 16 neighbours at
+  // A list is full: every list gets twice the room (rare: a grain has some 18 neighbours at
   // phi = 0.45, and room starts at 32).
   void widen() {
     std::vector<std::uint32_t> wider(list_.size() * 2);
