@@ -9,10 +9,10 @@
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
 //     the same bits (with one thread it runs inside 2, block by block, in the same order;
 //     with several, as a short serial sweep after it);
-//  4. the simulator adds the plate's forces, then update_grains calls after_row(i, forced)
-//     with grain i's total force: `forced` flags say which grains had a force at this pass or
-//     the last (contacts, plate, tether); the others fly free. The two kinds are listed apart
-//     first, and each list is updated in its own loop.
+//  4. the simulator adds the plate's forces, then update_grains moves the grains: those with a
+//     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
+//     advanced one by one with their total force; the others fly free, in one straight loop
+//     over all the grains that leaves the pushed ones as they are.
 // Phases 1, 2 and 4 are shared among threads. docs/performance.md says why the loops look as
 // they do (plain LaneVec columns, no Eigen in them, selects instead of branches).
 #pragma once
@@ -154,43 +154,42 @@ class ForcePass {
     return contacts;
   }
 
-  // Phase 4: after_row(i, forced) for every grain, forced = whether it had a force at this pass
-  // or the last (forced bits, or a tethered wall grain, which feels its springs); returns the
-  // largest value after_row returned. The two lists are built in index order without a branch:
-  // whether a grain in a jet touches another is as good as random, and one branch per grain on
-  // it mispredicts.
-  template <class AfterRow>
+  // Phase 4: the grains with a force at this pass or the last (forced bits, or a tethered wall
+  // grain, which feels its springs) are pushed: advance(i) for each; coast(pushed, begin, end)
+  // moves the others of [begin, end) (pushed[i] == 0). Returns the largest value either
+  // returned. The pushed grains are listed in index order without a branch: whether a grain in
+  // a jet touches another is as good as random, and one branch per grain on it mispredicts.
+  template <class Advance, class Coast>
   [[gnu::flatten]]  // the grain update inlined into its loops
   double
   update_grains(std::span<const std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
-                bool tethered_wall, AfterRow&& after_row) {
+                bool tethered_wall, Advance&& advance, Coast&& coast) {
     const auto n = static_cast<std::int64_t>(kinds.size());
     const std::uint8_t* forced = forced_bits.data();
     const GrainKind* kind = kinds.data();
     const unsigned tethered = tethered_wall;
-    forced_grains_.resize(n);
-    coasting_grains_.resize(n);
-    std::int64_t forced_count = 0, coasting_count = 0;
+    pushed_.resize(n);
+    pushed_grains_.resize(n);
+    std::uint8_t* pushed = pushed_.data();
+    for (std::int64_t i = 0; i < n; ++i)
+      pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+    std::uint32_t* listed = pushed_grains_.data();
+    std::int64_t count = 0;
     for (std::int64_t i = 0; i < n; ++i) {
-      const bool pushed = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
-      forced_grains_[forced_count] = static_cast<std::uint32_t>(i);
-      coasting_grains_[coasting_count] = static_cast<std::uint32_t>(i);
-      forced_count += pushed;
-      coasting_count += !pushed;
+      listed[count] = static_cast<std::uint32_t>(i);
+      count += pushed[i];
     }
-    const std::uint32_t* pushed = forced_grains_.data();
-    const std::uint32_t* coasting = coasting_grains_.data();
     std::vector<double> thread_largest(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
-      double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
+      const int t = thread_index();
+      // A local, stored once: the threads' slots share a cache line.
+      double largest = coast(pushed, n * t / threads_, n * (t + 1) / threads_);
+      // coast stores every grain of its range, the pushed ones unchanged: advance must wait.
+#pragma omp barrier
 #pragma omp for schedule(static) nowait
-      for (std::int64_t k = 0; k < coasting_count; ++k)
-        largest = sticky_max(largest, after_row(coasting[k], false));
-#pragma omp for schedule(static) nowait
-      for (std::int64_t k = 0; k < forced_count; ++k)
-        largest = sticky_max(largest, after_row(pushed[k], true));
-      thread_largest[thread_index()] = largest;
+      for (std::int64_t k = 0; k < count; ++k) largest = sticky_max(largest, advance(listed[k]));
+      thread_largest[t] = largest;
     }
     double largest = 0.0;
     for (double value : thread_largest) largest = sticky_max(largest, value);
@@ -282,8 +281,10 @@ class ForcePass {
   // find_contacts' scratch: each thread's stretch of the list, and their join.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
-  // update_grains' lists: the grains with a force at this pass or the last, the coasting ones.
-  std::vector<std::uint32_t> forced_grains_, coasting_grains_;
+  // update_grains' scratch: whether each grain is pushed (a force at this pass or the last), and
+  // the list of those that are.
+  std::vector<std::uint8_t> pushed_;
+  std::vector<std::uint32_t> pushed_grains_;
 };
 
 }  // namespace granjet::dem
