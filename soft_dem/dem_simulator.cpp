@@ -193,7 +193,14 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
     wall_.add_forces(
         p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
-  pass_.find_contacts(p_, pairs_, pair_row_, space_);
+  if (!quiet_.fresh()) {
+    const auto radius = p_.radius();
+    quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
+                    [&](std::uint32_t i, std::uint32_t j) {
+                      return radius_of(radius, i) + radius_of(radius, j);
+                    });
+  }
+  pass_.find_contacts(p_, pairs_, pair_row_, quiet_.tested(), space_);
   const std::size_t first_blown = pass_.evaluate_contacts(
       law_, p_, pairs_, pair_row_, space_, {force_.data(), torque_.data(), forced_.data()});
   const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
@@ -217,6 +224,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
       if (touch == Touch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
     }
   }
+  quiet_.after_pass(forced_);
   const double largest = pass_.update_grains(forced_, p_.kind(), tethered_, advance, coast);
   // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
   // row i + 1); the state it integrated is lost anyway.
@@ -385,6 +393,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
         return i;
       },
       pairs_);
+  quiet_.expire();
   travel_ = 0.0;
   needs_rebuild_ = false;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);

@@ -24,6 +24,7 @@
 #include "soft_dem/force_pass.hpp"
 #include "soft_dem/integrators.hpp"
 #include "soft_dem/plate.hpp"
+#include "soft_dem/quiet_pairs.hpp"
 #include "soft_dem/tethered_wall.hpp"
 
 namespace granjet::dem {
@@ -113,6 +114,7 @@ class DemSimulator final : public Simulator<D> {
   CellGrid<D> grid_;
   PairList pairs_;
   std::vector<std::uint32_t> pair_row_;  // the row i of each listed pair
+  QuietPairs<D> quiet_;                  // which listed pairs the pass tests
   Pass pass_;
   std::optional<Plate<D, WallLaw>> plate_;  // wall.kind = plate
 

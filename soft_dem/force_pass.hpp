@@ -69,12 +69,18 @@ class ForcePass {
   History& history() { return history_; }
   const History& history() const { return history_; }
 
-  // Phase 1. Each thread tests a contiguous stretch of the list; the stretches are joined in
-  // order. The index of every pair is written and the count advances only for a contact: no
-  // branch. A non-finite separation counts as apart (the simulator's check reports it).
+  // Phase 1, over the listed pairs `tested` (increasing indices; soft_dem/quiet_pairs.hpp says
+  // which others cannot touch). Each thread tests a contiguous stretch of them; the stretches
+  // are joined in order. The index of every pair is written and the count advances only for a
+  // contact: no branch. A non-finite separation counts as apart (the simulator's check reports
+  // it).
   void find_contacts(const Particles<D>& p, const PairList& pairs,
-                     const std::vector<std::uint32_t>& pair_row, const Space& space) {
-    const std::size_t listed = pairs.size();
+                     const std::vector<std::uint32_t>& pair_row,
+                     std::span<const std::uint32_t> tested, const Space& space) {
+    const std::size_t listed = tested.size();
+    // Every pair, tested[k] == k: read straight through (the loop is unswitched on this).
+    const bool every = listed == pairs.size();
+    const std::uint32_t* index = tested.data();
     const Vec<D>* x = p.position().data();
     const double* radius = p.radius().data();
     const std::uint32_t* row = pair_row.data();
@@ -88,11 +94,12 @@ class ForcePass {
       if (out.size() < end - begin) out.resize(end - begin);
       std::uint32_t* slot = out.data();
       std::size_t touching = 0;
-      for (std::size_t k = begin; k < end; ++k) {
+      for (std::size_t m = begin; m < end; ++m) {
+        const std::uint32_t k = every ? static_cast<std::uint32_t>(m) : index[m];
         const std::uint32_t i = row[k], j = partner[k];
         const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
         const double d2 = space.separation(x[i], x[j]).squaredNorm();
-        slot[touching] = static_cast<std::uint32_t>(k);
+        slot[touching] = k;
         touching += d2 < reach * reach;
       }
       count[t] = touching;
