@@ -71,17 +71,22 @@ class QuietPairs {
       largest = std::max(largest, x[i].cwiseAbs().maxCoeff());
     }
     tested_.resize(listed);
-    if (quiet == 0) {  // nothing to skip (a gas): spare the passes over the pairs
+    // Too few to skip much (a gas: only the vote's winner): spare the passes over the pairs.
+    if (8 * quiet < n) {
       for (std::size_t k = 0; k < listed; ++k) tested_[k] = static_cast<std::uint32_t>(k);
       return;
     }
     next_.resize(n);
+    const std::uint32_t* row = pair_row.data();
+    const std::uint32_t* partner = pairs.partner.data();
     for (int layer = 0; layer < kMargin; ++layer) {
-      std::copy(trusted_.begin(), trusted_.end(), next_.begin());
+      // Raw pointers: a store through a byte may alias anything, a vector's own pointer too.
+      const std::uint8_t* now = trusted_.data();
+      std::uint8_t* next = next_.data();
+      std::copy(now, now + n, next);
       for (std::size_t k = 0; k < listed; ++k) {
-        const std::uint32_t i = pair_row[k], j = pairs.partner[k];
-        next_[i] &= trusted_[j];
-        next_[j] &= trusted_[i];
+        next[row[k]] &= now[partner[k]];
+        next[partner[k]] &= now[row[k]];
       }
       trusted_.swap(next_);
     }
