@@ -7,13 +7,14 @@
 //     blocks of contacts held as columns (ContactTable), two vectorised loops per block;
 //  3. ContactSums: every grain sums its contacts in list order (the rows k < i that list it,
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
-//     the same bits (with one thread it runs inside 2, block by block, in the same order;
-//     with several, as a short serial sweep after it);
+//     the same bits. It runs inside 2, block by block, each thread over its own stretch of
+//     contacts; a grain that an earlier stretch touches too gets the later stretches' parts
+//     in a short serial sweep after it;
 //  4. the simulator adds the plate's forces, then update_grains moves the grains: those with a
 //     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
 //     advanced one by one with their total force; the others fly free, in one straight loop
 //     over all the grains that leaves the pushed ones as they are.
-// Phases 1, 2 and 4 are shared among threads. docs/performance.md says why the loops look as
+// Phases 1 to 4 are shared among threads. docs/performance.md says why the loops look as
 // they do (plain LaneVec columns, no Eigen in them, selects instead of branches).
 #pragma once
 
@@ -127,12 +128,14 @@ class ForcePass {
     const std::uint32_t* partner = pairs.partner.data();
     std::int64_t* grain_i = contact_i_.data();
     std::int64_t* grain_j = contact_j_.data();
-    const bool serial = threads_ == 1;
     const ContactSums sums = contact_sums(target);
     // Blocks of contacts small enough that their columns stay in the first-level cache from the
-    // geometry through the law to a single thread's sums.
+    // geometry through the law to the sums.
     constexpr std::int64_t kBlock = 32;
     const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
+    const std::size_t n = p.size();
+    later_.resize(threads_);
+    deferred_.resize(threads_);
     bool any_too_deep = false;  // the first such contact is looked for only then
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
@@ -141,17 +144,47 @@ class ForcePass {
         grain_i[c] = row[pair[c]];
         grain_j[c] = partner[pair[c]];
       }
-#pragma omp for schedule(static)
-      for (std::int64_t block = 0; block < blocks; ++block) {
-        const std::int64_t begin = block * kBlock, end = std::min(contacts, begin + kBlock);
-        any_too_deep |= gather_contacts(p, space, begin, end);
-        contacts_.apply(law, history_.shear(), begin, end);
-        if (serial)  // in list order already: phase 3 done on the way
-          for (std::int64_t c = begin; c < end; ++c) sums.add(c);
+      // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
+      // earlier stretch also touches must first have those contacts: its sums wait for the
+      // serial sweep below (few grains: the contacts are in row order, partners close by).
+      const int t = thread_index();
+      const std::int64_t begin = std::min(contacts, blocks * t / threads_ * kBlock);
+      const std::int64_t end = std::min(contacts, blocks * (t + 1) / threads_ * kBlock);
+      std::vector<std::uint8_t>& later = later_[t];
+      std::vector<std::uint32_t>& deferred = deferred_[t];
+      later.assign(t > 0 ? n : 0, 0);
+      if (t > 0 && begin < end) {
+        const std::int64_t first = grain_i[begin];  // no earlier contact touches a grain below
+        for (std::int64_t c = 0; c < begin; ++c) {
+          later[grain_i[c]] |= grain_i[c] >= first;
+          later[grain_j[c]] |= grain_j[c] >= first;
+        }
       }
+      deferred.resize(end - begin);
+      std::size_t waiting = 0;
+      for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
+        const std::int64_t block_end = std::min(end, block_begin + kBlock);
+        any_too_deep |= gather_contacts(p, space, block_begin, block_end);
+        contacts_.apply(law, history_.shear(), block_begin, block_end);
+        if (t == 0) {
+          for (std::int64_t c = block_begin; c < block_end; ++c) sums.add(c);
+        } else {
+          for (std::int64_t c = block_begin; c < block_end; ++c) {
+            const bool wait_i = later[grain_i[c]] != 0, wait_j = later[grain_j[c]] != 0;
+            if (!wait_i) sums.add_i(c);
+            if (!wait_j) sums.add_j(c);
+            deferred[waiting] = static_cast<std::uint32_t>(c);
+            waiting += wait_i | wait_j;
+          }
+        }
+      }
+      deferred.resize(waiting);
     }
-    if (!serial)
-      for (std::int64_t c = 0; c < contacts; ++c) sums.add(c);
+    for (int t = 1; t < threads_; ++t)  // the stretches in order: each grain's sums in list order
+      for (std::uint32_t c : deferred_[t]) {
+        if (later_[t][grain_i[c]] != 0) sums.add_i(c);
+        if (later_[t][grain_j[c]] != 0) sums.add_j(c);
+      }
     if (any_too_deep)
       for (std::int64_t c = 0; c < contacts; ++c) {
         const double radius_i = radius_of(p.radius(), grain_i[c]);
@@ -263,16 +296,21 @@ class ForcePass {
     std::uint8_t* forced;
 
     void add(std::size_t c) const {
-      const std::int64_t i = grain_i[c], j = grain_j[c];
+      add_i(c);
+      add_j(c);
+    }
+    // Its part for grain i only, or j only.
+    void add_i(std::size_t c) const {
+      const std::int64_t i = grain_i[c];
       forced[i] |= 1;
+      force[i] += contact_force.template get<Vec<D>>(c);
+      if constexpr (Law::kNeedsRotation) torque[i] -= contact_torque_i.template get<Spin<D>>(c);
+    }
+    void add_j(std::size_t c) const {
+      const std::int64_t j = grain_j[c];
       forced[j] |= 1;
-      const Vec<D> f = contact_force.template get<Vec<D>>(c);
-      force[i] += f;
-      force[j] -= f;
-      if constexpr (Law::kNeedsRotation) {
-        torque[i] -= contact_torque_i.template get<Spin<D>>(c);
-        torque[j] -= contact_torque_j.template get<Spin<D>>(c);
-      }
+      force[j] -= contact_force.template get<Vec<D>>(c);
+      if constexpr (Law::kNeedsRotation) torque[j] -= contact_torque_j.template get<Spin<D>>(c);
     }
   };
   ContactSums contact_sums(const Sums& target) const {
@@ -285,6 +323,10 @@ class ForcePass {
   History history_;
   Table contacts_;
   std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
+  // evaluate_contacts' scratch, per thread: the grains an earlier thread's contacts touch too,
+  // and the contacts whose sums wait for the serial sweep.
+  std::vector<std::vector<std::uint8_t>> later_;
+  std::vector<std::vector<std::uint32_t>> deferred_;
   // find_contacts' scratch: each thread's stretch of the list, and their join.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
