@@ -209,26 +209,41 @@ class ForcePass {
     const GrainKind* kind = kinds.data();
     const unsigned tethered = tethered_wall;
     pushed_.resize(n);
-    pushed_grains_.resize(n);
+    pushed_grains_.resize(threads_);
+    std::vector<std::int64_t> listed_count(threads_, 0);
     std::uint8_t* pushed = pushed_.data();
-    for (std::int64_t i = 0; i < n; ++i)
-      pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
-    std::uint32_t* listed = pushed_grains_.data();
-    std::int64_t count = 0;
-    for (std::int64_t i = 0; i < n; ++i) {
-      listed[count] = static_cast<std::uint32_t>(i);
-      count += pushed[i];
-    }
     std::vector<double> thread_largest(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
+      // Each thread flags and lists the pushed grains of its own range, in index order, and
+      // moves the coasting ones.
       const int t = thread_index();
+      const std::int64_t begin = n * t / threads_, end = n * (t + 1) / threads_;
+      for (std::int64_t i = begin; i < end; ++i)
+        pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+      std::vector<std::uint32_t>& listed = pushed_grains_[t];
+      listed.resize(end - begin);
+      std::int64_t count = 0;
+      for (std::int64_t i = begin; i < end; ++i) {
+        listed[count] = static_cast<std::uint32_t>(i);
+        count += pushed[i];
+      }
+      listed_count[t] = count;
       // A local, stored once: the threads' slots share a cache line.
-      double largest = coast(pushed, n * t / threads_, n * (t + 1) / threads_);
-      // coast stores every grain of its range, the pushed ones unchanged: advance must wait.
+      double largest = coast(pushed, begin, end);
+      // coast stores every grain of its range, the pushed ones unchanged, and the pushed grains
+      // cluster in some ranges (the impact region): the threads share out all the lists after.
 #pragma omp barrier
-#pragma omp for schedule(static) nowait
-      for (std::int64_t k = 0; k < count; ++k) largest = sticky_max(largest, advance(listed[k]));
+      std::int64_t total = 0;
+      for (std::int64_t count_of : listed_count) total += count_of;
+      // This thread's share of the joined lists: entry k of list s, onwards.
+      const std::int64_t first = total * t / threads_, last = total * (t + 1) / threads_;
+      std::int64_t k = first;
+      int s = 0;
+      for (std::int64_t m = first; m < last; ++m) {
+        while (k >= listed_count[s]) k -= listed_count[s++];
+        largest = sticky_max(largest, advance(pushed_grains_[s][k++]));
+      }
       thread_largest[t] = largest;
     }
     double largest = 0.0;
@@ -331,9 +346,9 @@ class ForcePass {
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
   // update_grains' scratch: whether each grain is pushed (a force at this pass or the last), and
-  // the list of those that are.
+  // each thread's list of those that are.
   std::vector<std::uint8_t> pushed_;
-  std::vector<std::uint32_t> pushed_grains_;
+  std::vector<std::vector<std::uint32_t>> pushed_grains_;
 };
 
 }  // namespace granjet::dem
