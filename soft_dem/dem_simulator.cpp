@@ -52,7 +52,9 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
   rebuild();
   if (scene.run.integrator == IntegratorKind::kVelocityVerlet)
-    force_pass([](std::size_t, bool) { return 0.0; });  // F(t0) into force_prev_, for the predictor
+    force_pass(  // F(t0) into force_prev_, for the predictor
+        [](std::size_t) { return 0.0; },
+        [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
   // What the scene started with: grains the first rebuild removed (outside the region) count.
   initial_energy_ = energy().total() + removed_energy_;
 }
@@ -112,8 +114,10 @@ void DemSimulator<D, Law, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
     const Ab2Step<D, kRotation> ab2 = ab2_step();
-    add_travel(force_pass(
-        [&](std::size_t i, bool forced) { return forced ? ab2.advance(i) : ab2.coast(i); }));
+    add_travel(force_pass([&](std::size_t i) { return ab2.advance(i); },
+                          [&](const std::uint8_t* pushed, std::int64_t begin, std::int64_t end) {
+                            return ab2.coast(pushed, begin, end);
+                          }));
     first_step_ = false;
     ++step_;
   } else {
@@ -133,10 +137,13 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     add_travel(speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
     const VerletStep<D, kRotation> corrector = verlet_step();
-    force_pass([&](std::size_t i, bool forced) {
-      if (forced) corrector.correct(i);  // else F(t) = F(t + dt) = 0: nothing to correct
-      return 0.0;
-    });
+    force_pass(
+        [&](std::size_t i) {
+          corrector.correct(i);
+          return 0.0;
+        },
+        // F(t) = F(t + dt) = 0: nothing to correct
+        [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
   }
   stats_.steps = step_;
   stats_.particle_steps += free_grains_;
@@ -178,15 +185,22 @@ auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotatio
 // The whole pass (the phases of force_pass.hpp): the tethers, the pairs, the plate, then each
 // grain's update. force_ and torque_ must be zero on entry.
 template <int D, class Law, bool kMono, class Space>
-template <class AfterRow>
+template <class Advance, class Coast>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
 double
-DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
+DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
   if (tethered_)
     wall_.add_forces(
         p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
-  pass_.find_contacts(p_, pairs_, pair_row_, space_);
+  if (!quiet_.fresh()) {
+    const auto radius = p_.radius();
+    quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
+                    [&](std::uint32_t i, std::uint32_t j) {
+                      return radius_of(radius, i) + radius_of(radius, j);
+                    });
+  }
+  pass_.find_contacts(p_, pairs_, pair_row_, quiet_.tested(), space_);
   const std::size_t first_blown = pass_.evaluate_contacts(
       law_, p_, pairs_, pair_row_, space_, {force_.data(), torque_.data(), forced_.data()});
   const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
@@ -210,7 +224,8 @@ DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
       if (touch == Touch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
     }
   }
-  const double largest = pass_.update_grains(forced_, p_.kind(), tethered_, after_row);
+  quiet_.after_pass(forced_);
+  const double largest = pass_.update_grains(forced_, p_.kind(), tethered_, advance, coast);
   // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
   // row i + 1); the state it integrated is lost anyway.
   if (first_blown < contact_pair.size()) {
@@ -218,7 +233,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(AfterRow&& after_row) {
     if (pair_row_[k] <= first_blown_on_plate) throw_overlap(pair_row_[k], pairs_.partner[k]);
   }
   if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
-  // after_row zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
+  // advance zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
   if constexpr (kRotation) torque_.swap(torque_prev_);
   return largest;
@@ -378,6 +393,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
         return i;
       },
       pairs_);
+  quiet_.expire();
   travel_ = 0.0;
   needs_rebuild_ = false;
   free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);

@@ -24,6 +24,7 @@
 #include "soft_dem/force_pass.hpp"
 #include "soft_dem/integrators.hpp"
 #include "soft_dem/plate.hpp"
+#include "soft_dem/quiet_pairs.hpp"
 #include "soft_dem/tethered_wall.hpp"
 
 namespace granjet::dem {
@@ -59,10 +60,11 @@ class DemSimulator final : public Simulator<D> {
   // The integrators over the current arrays (rebuilds reorder them: take these after one).
   Ab2Step<D, kRotation> ab2_step();
   VerletStep<D, kRotation> verlet_step();
-  // Evaluates all forces at the current state, then calls after_row(i, forced) for every grain
-  // with its total force (see force_pass.hpp); returns the largest value after_row returned.
-  template <class AfterRow>
-  double force_pass(AfterRow&& after_row);
+  // Evaluates all forces at the current state, then moves the grains (see force_pass.hpp):
+  // advance(i) for each grain with a force at this pass or the last, coast(pushed, begin, end)
+  // for the others; returns the largest value either returned.
+  template <class Advance, class Coast>
+  double force_pass(Advance&& advance, Coast&& coast);
   // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
   std::vector<History> histories() const;
   void rebuild() { rebuild(histories()); }
@@ -112,6 +114,7 @@ class DemSimulator final : public Simulator<D> {
   CellGrid<D> grid_;
   PairList pairs_;
   std::vector<std::uint32_t> pair_row_;  // the row i of each listed pair
+  QuietPairs<D> quiet_;                  // which listed pairs the pass tests
   Pass pass_;
   std::optional<Plate<D, WallLaw>> plate_;  // wall.kind = plate
 

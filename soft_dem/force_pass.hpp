@@ -7,13 +7,14 @@
 //     blocks of contacts held as columns (ContactTable), two vectorised loops per block;
 //  3. ContactSums: every grain sums its contacts in list order (the rows k < i that list it,
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
-//     the same bits (with one thread it runs inside 2, block by block, in the same order;
-//     with several, as a short serial sweep after it);
-//  4. the simulator adds the plate's forces, then update_grains calls after_row(i, forced)
-//     with grain i's total force: `forced` flags say which grains had a force at this pass or
-//     the last (contacts, plate, tether); the others fly free. The two kinds are listed apart
-//     first, and each list is updated in its own loop.
-// Phases 1, 2 and 4 are shared among threads. docs/performance.md says why the loops look as
+//     the same bits. It runs inside 2, block by block, each thread over its own stretch of
+//     contacts; a grain that an earlier stretch touches too gets the later stretches' parts
+//     in a short serial sweep after it;
+//  4. the simulator adds the plate's forces, then update_grains moves the grains: those with a
+//     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
+//     advanced one by one with their total force; the others fly free, in one straight loop
+//     over all the grains that leaves the pushed ones as they are.
+// Phases 1 to 4 are shared among threads. docs/performance.md says why the loops look as
 // they do (plain LaneVec columns, no Eigen in them, selects instead of branches).
 #pragma once
 
@@ -69,12 +70,18 @@ class ForcePass {
   History& history() { return history_; }
   const History& history() const { return history_; }
 
-  // Phase 1. Each thread tests a contiguous stretch of the list; the stretches are joined in
-  // order. The index of every pair is written and the count advances only for a contact: no
-  // branch. A non-finite separation counts as apart (the simulator's check reports it).
+  // Phase 1, over the listed pairs `tested` (increasing indices; soft_dem/quiet_pairs.hpp says
+  // which others cannot touch). Each thread tests a contiguous stretch of them; the stretches
+  // are joined in order. The index of every pair is written and the count advances only for a
+  // contact: no branch. A non-finite separation counts as apart (the simulator's check reports
+  // it).
   void find_contacts(const Particles<D>& p, const PairList& pairs,
-                     const std::vector<std::uint32_t>& pair_row, const Space& space) {
-    const std::size_t listed = pairs.size();
+                     const std::vector<std::uint32_t>& pair_row,
+                     std::span<const std::uint32_t> tested, const Space& space) {
+    const std::size_t listed = tested.size();
+    // Every pair, tested[k] == k: read straight through (the loop is unswitched on this).
+    const bool every = listed == pairs.size();
+    const std::uint32_t* index = tested.data();
     const Vec<D>* x = p.position().data();
     const double* radius = p.radius().data();
     const std::uint32_t* row = pair_row.data();
@@ -88,11 +95,12 @@ class ForcePass {
       if (out.size() < end - begin) out.resize(end - begin);
       std::uint32_t* slot = out.data();
       std::size_t touching = 0;
-      for (std::size_t k = begin; k < end; ++k) {
+      for (std::size_t m = begin; m < end; ++m) {
+        const std::uint32_t k = every ? static_cast<std::uint32_t>(m) : index[m];
         const std::uint32_t i = row[k], j = partner[k];
         const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
         const double d2 = space.separation(x[i], x[j]).squaredNorm();
-        slot[touching] = static_cast<std::uint32_t>(k);
+        slot[touching] = k;
         touching += d2 < reach * reach;
       }
       count[t] = touching;
@@ -120,12 +128,14 @@ class ForcePass {
     const std::uint32_t* partner = pairs.partner.data();
     std::int64_t* grain_i = contact_i_.data();
     std::int64_t* grain_j = contact_j_.data();
-    const bool serial = threads_ == 1;
     const ContactSums sums = contact_sums(target);
     // Blocks of contacts small enough that their columns stay in the first-level cache from the
-    // geometry through the law to a single thread's sums.
+    // geometry through the law to the sums.
     constexpr std::int64_t kBlock = 32;
     const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
+    const std::size_t n = p.size();
+    later_.resize(threads_);
+    deferred_.resize(threads_);
     bool any_too_deep = false;  // the first such contact is looked for only then
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
@@ -134,17 +144,47 @@ class ForcePass {
         grain_i[c] = row[pair[c]];
         grain_j[c] = partner[pair[c]];
       }
-#pragma omp for schedule(static)
-      for (std::int64_t block = 0; block < blocks; ++block) {
-        const std::int64_t begin = block * kBlock, end = std::min(contacts, begin + kBlock);
-        any_too_deep |= gather_contacts(p, space, begin, end);
-        contacts_.apply(law, history_.shear(), begin, end);
-        if (serial)  // in list order already: phase 3 done on the way
-          for (std::int64_t c = begin; c < end; ++c) sums.add(c);
+      // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
+      // earlier stretch also touches must first have those contacts: its sums wait for the
+      // serial sweep below (few grains: the contacts are in row order, partners close by).
+      const int t = thread_index();
+      const std::int64_t begin = std::min(contacts, blocks * t / threads_ * kBlock);
+      const std::int64_t end = std::min(contacts, blocks * (t + 1) / threads_ * kBlock);
+      std::vector<std::uint8_t>& later = later_[t];
+      std::vector<std::uint32_t>& deferred = deferred_[t];
+      later.assign(t > 0 ? n : 0, 0);
+      if (t > 0 && begin < end) {
+        const std::int64_t first = grain_i[begin];  // no earlier contact touches a grain below
+        for (std::int64_t c = 0; c < begin; ++c) {
+          later[grain_i[c]] |= grain_i[c] >= first;
+          later[grain_j[c]] |= grain_j[c] >= first;
+        }
       }
+      deferred.resize(end - begin);
+      std::size_t waiting = 0;
+      for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
+        const std::int64_t block_end = std::min(end, block_begin + kBlock);
+        any_too_deep |= gather_contacts(p, space, block_begin, block_end);
+        contacts_.apply(law, history_.shear(), block_begin, block_end);
+        if (t == 0) {
+          for (std::int64_t c = block_begin; c < block_end; ++c) sums.add(c);
+        } else {
+          for (std::int64_t c = block_begin; c < block_end; ++c) {
+            const bool wait_i = later[grain_i[c]] != 0, wait_j = later[grain_j[c]] != 0;
+            if (!wait_i) sums.add_i(c);
+            if (!wait_j) sums.add_j(c);
+            deferred[waiting] = static_cast<std::uint32_t>(c);
+            waiting += wait_i | wait_j;
+          }
+        }
+      }
+      deferred.resize(waiting);
     }
-    if (!serial)
-      for (std::int64_t c = 0; c < contacts; ++c) sums.add(c);
+    for (int t = 1; t < threads_; ++t)  // the stretches in order: each grain's sums in list order
+      for (std::uint32_t c : deferred_[t]) {
+        if (later_[t][grain_i[c]] != 0) sums.add_i(c);
+        if (later_[t][grain_j[c]] != 0) sums.add_j(c);
+      }
     if (any_too_deep)
       for (std::int64_t c = 0; c < contacts; ++c) {
         const double radius_i = radius_of(p.radius(), grain_i[c]);
@@ -154,43 +194,57 @@ class ForcePass {
     return contacts;
   }
 
-  // Phase 4: after_row(i, forced) for every grain, forced = whether it had a force at this pass
-  // or the last (forced bits, or a tethered wall grain, which feels its springs); returns the
-  // largest value after_row returned. The two lists are built in index order without a branch:
-  // whether a grain in a jet touches another is as good as random, and one branch per grain on
-  // it mispredicts.
-  template <class AfterRow>
+  // Phase 4: the grains with a force at this pass or the last (forced bits, or a tethered wall
+  // grain, which feels its springs) are pushed: advance(i) for each; coast(pushed, begin, end)
+  // moves the others of [begin, end) (pushed[i] == 0). Returns the largest value either
+  // returned. The pushed grains are listed in index order without a branch: whether a grain in
+  // a jet touches another is as good as random, and one branch per grain on it mispredicts.
+  template <class Advance, class Coast>
   [[gnu::flatten]]  // the grain update inlined into its loops
   double
   update_grains(std::span<const std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
-                bool tethered_wall, AfterRow&& after_row) {
+                bool tethered_wall, Advance&& advance, Coast&& coast) {
     const auto n = static_cast<std::int64_t>(kinds.size());
     const std::uint8_t* forced = forced_bits.data();
     const GrainKind* kind = kinds.data();
     const unsigned tethered = tethered_wall;
-    forced_grains_.resize(n);
-    coasting_grains_.resize(n);
-    std::int64_t forced_count = 0, coasting_count = 0;
-    for (std::int64_t i = 0; i < n; ++i) {
-      const bool pushed = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
-      forced_grains_[forced_count] = static_cast<std::uint32_t>(i);
-      coasting_grains_[coasting_count] = static_cast<std::uint32_t>(i);
-      forced_count += pushed;
-      coasting_count += !pushed;
-    }
-    const std::uint32_t* pushed = forced_grains_.data();
-    const std::uint32_t* coasting = coasting_grains_.data();
+    pushed_.resize(n);
+    pushed_grains_.resize(threads_);
+    std::vector<std::int64_t> listed_count(threads_, 0);
+    std::uint8_t* pushed = pushed_.data();
     std::vector<double> thread_largest(threads_, 0.0);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
-      double largest = 0.0;  // a local, stored once: the threads' slots share a cache line
-#pragma omp for schedule(static) nowait
-      for (std::int64_t k = 0; k < coasting_count; ++k)
-        largest = sticky_max(largest, after_row(coasting[k], false));
-#pragma omp for schedule(static) nowait
-      for (std::int64_t k = 0; k < forced_count; ++k)
-        largest = sticky_max(largest, after_row(pushed[k], true));
-      thread_largest[thread_index()] = largest;
+      // Each thread flags and lists the pushed grains of its own range, in index order, and
+      // moves the coasting ones.
+      const int t = thread_index();
+      const std::int64_t begin = n * t / threads_, end = n * (t + 1) / threads_;
+      for (std::int64_t i = begin; i < end; ++i)
+        pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+      std::vector<std::uint32_t>& listed = pushed_grains_[t];
+      listed.resize(end - begin);
+      std::int64_t count = 0;
+      for (std::int64_t i = begin; i < end; ++i) {
+        listed[count] = static_cast<std::uint32_t>(i);
+        count += pushed[i];
+      }
+      listed_count[t] = count;
+      // A local, stored once: the threads' slots share a cache line.
+      double largest = coast(pushed, begin, end);
+      // coast stores every grain of its range, the pushed ones unchanged, and the pushed grains
+      // cluster in some ranges (the impact region): the threads share out all the lists after.
+#pragma omp barrier
+      std::int64_t total = 0;
+      for (std::int64_t count_of : listed_count) total += count_of;
+      // This thread's share of the joined lists: entry k of list s, onwards.
+      const std::int64_t first = total * t / threads_, last = total * (t + 1) / threads_;
+      std::int64_t k = first;
+      int s = 0;
+      for (std::int64_t m = first; m < last; ++m) {
+        while (k >= listed_count[s]) k -= listed_count[s++];
+        largest = sticky_max(largest, advance(pushed_grains_[s][k++]));
+      }
+      thread_largest[t] = largest;
     }
     double largest = 0.0;
     for (double value : thread_largest) largest = sticky_max(largest, value);
@@ -257,16 +311,21 @@ class ForcePass {
     std::uint8_t* forced;
 
     void add(std::size_t c) const {
-      const std::int64_t i = grain_i[c], j = grain_j[c];
+      add_i(c);
+      add_j(c);
+    }
+    // Its part for grain i only, or j only.
+    void add_i(std::size_t c) const {
+      const std::int64_t i = grain_i[c];
       forced[i] |= 1;
+      force[i] += contact_force.template get<Vec<D>>(c);
+      if constexpr (Law::kNeedsRotation) torque[i] -= contact_torque_i.template get<Spin<D>>(c);
+    }
+    void add_j(std::size_t c) const {
+      const std::int64_t j = grain_j[c];
       forced[j] |= 1;
-      const Vec<D> f = contact_force.template get<Vec<D>>(c);
-      force[i] += f;
-      force[j] -= f;
-      if constexpr (Law::kNeedsRotation) {
-        torque[i] -= contact_torque_i.template get<Spin<D>>(c);
-        torque[j] -= contact_torque_j.template get<Spin<D>>(c);
-      }
+      force[j] -= contact_force.template get<Vec<D>>(c);
+      if constexpr (Law::kNeedsRotation) torque[j] -= contact_torque_j.template get<Spin<D>>(c);
     }
   };
   ContactSums contact_sums(const Sums& target) const {
@@ -279,11 +338,17 @@ class ForcePass {
   History history_;
   Table contacts_;
   std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
+  // evaluate_contacts' scratch, per thread: the grains an earlier thread's contacts touch too,
+  // and the contacts whose sums wait for the serial sweep.
+  std::vector<std::vector<std::uint8_t>> later_;
+  std::vector<std::vector<std::uint32_t>> deferred_;
   // find_contacts' scratch: each thread's stretch of the list, and their join.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
-  // update_grains' lists: the grains with a force at this pass or the last, the coasting ones.
-  std::vector<std::uint32_t> forced_grains_, coasting_grains_;
+  // update_grains' scratch: whether each grain is pushed (a force at this pass or the last), and
+  // each thread's list of those that are.
+  std::vector<std::uint8_t> pushed_;
+  std::vector<std::vector<std::uint32_t>> pushed_grains_;
 };
 
 }  // namespace granjet::dem

@@ -6,16 +6,26 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "core/dim.hpp"
+#include "soft_dem/lane_vec.hpp"
 
 namespace granjet::dem {
 
 // The larger of the two, where a NaN wins and stays (so a blow-up is not lost in a maximum).
 inline double sticky_max(double largest, double value) {
   return value > largest || std::isnan(value) ? value : largest;
+}
+
+// a where mask has all bits set, b where it has none. In bits: GCC turns a ?: whose one side is
+// the value already stored into a branch or a masked store, and then does not vectorise.
+inline double select_bits(std::uint64_t mask, double a, double b) {
+  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & mask) |
+                               (std::bit_cast<std::uint64_t>(b) & ~mask));
 }
 
 // Adams-Bashforth-2 for velocities and spins, trapezoid for positions (spec §3), with
@@ -57,11 +67,29 @@ struct Ab2Step {
     return speed2;
   }
 
-  // One without: it flies straight on and its zero forces are not touched (most of a jet in
-  // flight).
-  double coast(std::size_t i) const {
-    x[i] += half_dt * (v[i] + v[i]);  // v_new = v: the same rounding as advance
-    return v[i].squaredNorm();
+  // Grains [begin, end) without a force (pushed[i] == 0) fly straight on and their zero forces
+  // are not touched (most of a jet in flight); the pushed ones are left to advance. Returns the
+  // largest squared speed of the coasting ones. One straight loop over all the grains, which
+  // GCC vectorises: whether a grain of a jet is pushed is as good as random, so a list of the
+  // coasting ones would cost a compaction and indirect loads for no arithmetic saved.
+  double coast(const std::uint8_t* pushed, std::int64_t begin, std::int64_t end) const {
+    static_assert(sizeof(Vec<D>) == D * sizeof(double));
+    double* position = reinterpret_cast<double*>(x);
+    const double* velocity = reinterpret_cast<const double*>(v);
+    const double step = half_dt;  // a local: the stores through position may alias a member
+    // Squared speeds (never negative) compared as bits: the same order as the numbers, with
+    // any NaN above them all, so a blow-up is kept (as sticky_max does) by a maximum that
+    // vectorises.
+    std::uint64_t largest = 0;
+#pragma GCC ivdep
+    for (std::int64_t i = begin; i < end; ++i) {
+      const std::uint64_t moving = std::uint64_t{pushed[i] != 0} - 1;  // all bits, or none
+      const LaneVec<D> x_i = LaneVec<D>::at(position, i), v_i = LaneVec<D>::at(velocity, i);
+      const LaneVec<D> moved = x_i + step * (v_i + v_i);  // v_new = v: advance's rounding
+      for (int d = 0; d < D; ++d) position[D * i + d] = select_bits(moving, moved[d], x_i[d]);
+      largest = std::max(largest, std::bit_cast<std::uint64_t>(v_i.squaredNorm()) & moving);
+    }
+    return std::bit_cast<double>(largest);
   }
 };
 
