@@ -120,12 +120,9 @@ using DaryHeap = boost::heap::d_ary_heap<CalendarEntry, boost::heap::arity<kArit
                                          boost::heap::mutable_<true>, boost::heap::compare<Later>>;
 using PairingHeap = boost::heap::pairing_heap<CalendarEntry, boost::heap::compare<Later>>;
 
-// The calendar of the simulator. Measured (bench/ed_calendar_bench.cpp, 10,976 grains, two
-// reschedules per collision, one core, shared machine): one entry per grain, d-ary arity 4
-// 6.3-6.6e6 collisions/s, arity 8 6.1-6.4e6, arity 2 5.7-5.9e6, Fibonacci 3.2-3.5e6, pairing
-// 2.5-2.8e6; groups of 16, arity 4 11.0e6 (groups of 8 9.7e6, 32 11.6e6; arity 2 11.4e6, 8
-// 10.6e6). In the gas benchmark groups of 16 at arity 4 are as fast as any other choice (8 is
-// slower, 32, arity 2 and 8 are within the noise) and 1.2x faster than one entry per grain.
+// The calendar of the simulator: groups of 16 grains in a 4-ary heap, the fastest of the
+// arities, group sizes and Boost heaps measured (bench/ed_calendar_bench.cpp and the gas
+// benchmark; the numbers are in docs/performance.md).
 using Calendar = EventCalendar<DaryHeap<4>, 16>;
 
 }  // namespace granjet::ed
