@@ -1,5 +1,6 @@
 // The progress rows of a run (progress_table.hpp), one every run.progress_interval, and the
-// run's wall clock over all its invocations (a resumed run goes on from its checkpoint's).
+// run's wall clock and CPU time over all its invocations (a resumed run goes on from its
+// checkpoint's).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,7 @@ class ProgressRows final : public analysis::RunObserver<D> {
   void header() { table_.header(); }
   // Of every invocation of the run so far.
   double wall_seconds() const { return earlier_seconds_ + table_.elapsed_seconds(); }
+  double cpu_seconds() const { return earlier_cpu_seconds_ + table_.cpu_seconds(); }
 
   double next_time(const Simulator<D>&) const override { return next_progress_; }
   void observe(Simulator<D>& sim) override {
@@ -36,10 +38,12 @@ class ProgressRows final : public analysis::RunObserver<D> {
   void save_state(StateWriter& out) override {
     out("next_progress", next_progress_);
     out("wall_seconds", wall_seconds());
+    out("cpu_seconds", cpu_seconds());
   }
   void restore_state(StateReader& in) override {
     in("next_progress", next_progress_);
     in("wall_seconds", earlier_seconds_);
+    if (in.contains("cpu_seconds")) in("cpu_seconds", earlier_cpu_seconds_);
   }
 
  private:
@@ -48,6 +52,7 @@ class ProgressRows final : public analysis::RunObserver<D> {
   double half_step_;
   double next_progress_;
   double earlier_seconds_ = 0.0;  // of the invocations before this one
+  double earlier_cpu_seconds_ = 0.0;  // checkpoints before it was kept start it at 0
 };
 
 }  // namespace granjet

@@ -22,6 +22,10 @@ double ProgressTable::elapsed_seconds() const {
   return std::chrono::duration<double>(Clock::now() - start_).count();
 }
 
+double ProgressTable::cpu_seconds() const {
+  return static_cast<double>(std::clock() - cpu_start_) / CLOCKS_PER_SEC;
+}
+
 void ProgressTable::row(double time, std::int64_t grains, const SimStats& stats,
                         const EnergyBalance& energy) {
   const Clock::time_point now = Clock::now();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <ctime>
 #include <cstdint>
 #include <iosfwd>
 
@@ -18,6 +19,8 @@ class ProgressTable {
   void header();
   void row(double time, std::int64_t grains, const SimStats& stats, const EnergyBalance& energy);
   double elapsed_seconds() const;
+  // The process' CPU time since the table was made, over all its threads.
+  double cpu_seconds() const;
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -26,6 +29,7 @@ class ProgressTable {
   bool quiet_;
   bool event_driven_;
   Clock::time_point start_ = Clock::now();
+  std::clock_t cpu_start_ = std::clock();
   Clock::time_point last_ = start_;
   std::int64_t last_work_ = 0;
 };

@@ -32,7 +32,7 @@ namespace {
 template <int D>
 nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Simulator<D>& sim,
                             std::int64_t grains_initial, double wall_seconds,
-                            const std::string& status) {
+                            double cpu_seconds, const std::string& status) {
   const SimStats s = sim.stats();
   const EnergyBalance e = sim.energy();
   nlohmann::json j;
@@ -49,6 +49,7 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
   j["contacts"] = s.contacts;
   j["neighbour_rebuilds"] = s.neighbour_rebuilds;
   j["wall_seconds"] = wall_seconds;
+  j["cpu_seconds"] = cpu_seconds;  // of all threads: the rates below are per wall-second
   j["particle_steps"] = s.particle_steps;
   j["particle_steps_per_second"] = wall_seconds > 0.0 ? s.particle_steps / wall_seconds : 0.0;
   if (backend.counts_events) {
@@ -67,14 +68,15 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
 
 // The lines that close a run: the loop's time and rate, and what it measured.
 std::string timing_text(const nlohmann::json& summary, const SimStats& s, bool events,
-                        double wall) {
+                        double wall, double cpu) {
   std::ostringstream timing;
+  timing << "loop time " << wall << " s (CPU " << cpu << " s)";
   if (events)
-    timing << "loop time " << wall << " s for " << s.events << " events (" << s.collisions
+    timing << " for " << s.events << " events (" << s.collisions
            << " collisions, " << s.cell_crossings << " cell crossings), "
            << summary["collisions_per_second"].get<double>() << " collisions/s\n";
   else
-    timing << "loop time " << wall << " s for " << s.steps << " steps, "
+    timing << " for " << s.steps << " steps, "
            << summary["particle_steps_per_second"].get<double>() << " particle-steps/s\n";
   if (summary.contains("measured")) {
     timing << "measured";
@@ -258,7 +260,8 @@ int run_scene(const Scene& requested, const RunOptions& options,
       observe_to_end(*sim, scene, observers, frames, *writer, interrupts, say);
 
   const double wall = progress.wall_seconds();
-  nlohmann::json summary = summary_json(scene, backend, *sim, grains_initial, wall, status);
+  const double cpu = progress.cpu_seconds();
+  nlohmann::json summary = summary_json(scene, backend, *sim, grains_initial, wall, cpu, status);
   if (!warnings.empty()) summary["warnings"] = warnings;
   if (!support.adaptations.empty()) summary["adaptations"] = adaptations_json(support);
   for (analysis::RunObserver<D>* o : observers) o->summarize(*sim, summary);
@@ -270,7 +273,7 @@ int run_scene(const Scene& requested, const RunOptions& options,
     for (analysis::RunObserver<D>* o : observers)
       if (const std::string line = o->store(partial, out_file, summary); !line.empty()) say(line);
   }
-  const std::string timing = timing_text(summary, sim->stats(), backend.counts_events, wall);
+  const std::string timing = timing_text(summary, sim->stats(), backend.counts_events, wall, cpu);
   log.report() << timing;
   if (options.quiet && status != "complete") out << timing;  // a failed run reports even so
   log_summary(log, summary);

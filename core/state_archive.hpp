@@ -209,6 +209,8 @@ class StateReader {
     }
   }
   StateReader nested(const std::string& name) const { return {archive_, prefix_ + "/" + name}; }
+  // Whether the checkpoint holds `name`: an entry added after older checkpoints were written.
+  bool contains(const std::string& name) const { return archive_.contains(prefix_ + "/" + name); }
 
  private:
   const StateArchive& archive_;

@@ -58,8 +58,8 @@ VARIANTS = {
 GROUPS = ("particles", "observables", "connectivity", "contacts", "fields", "analysis")
 # Left out of the summary's digest: timings and paths, and the record of what the backend
 # adapted in the scene (a description of the run, not a result of it).
-TIMINGS = ("wall_seconds", "particle_steps_per_second", "collisions_per_second", "output",
-           "seconds", "adaptations")
+TIMINGS = ("wall_seconds", "cpu_seconds", "particle_steps_per_second", "collisions_per_second",
+           "output", "seconds", "adaptations")
 
 
 def digest_of(h5, summary):

@@ -65,7 +65,8 @@ class Resume : public testing::CommandTest {
 
   static nlohmann::json without_timings(nlohmann::json j) {
     for (const char* key :
-         {"wall_seconds", "particle_steps_per_second", "collisions_per_second", "output"})
+         {"wall_seconds", "cpu_seconds", "particle_steps_per_second", "collisions_per_second",
+          "output"})
       j.erase(key);
     if (j.contains("analysis")) j["analysis"].erase("seconds");
     return j;

@@ -36,6 +36,9 @@ TEST_F(GranjetCommand, BinarySceneReportsMeasuredRestitutionAndContactTime) {
   EXPECT_EQ(j["grains"], 2);
   EXPECT_GT(j["steps"].get<int>(), 0);
   EXPECT_GT(j["particle_steps_per_second"].get<double>(), 0.0);
+  // One thread: the loop's CPU time is positive and no more than its wall time.
+  EXPECT_GT(j["cpu_seconds"].get<double>(), 0.0);
+  EXPECT_LE(j["cpu_seconds"].get<double>(), j["wall_seconds"].get<double>() + 1e-3);
   EXPECT_NEAR(j["measured"]["restitution"].get<double>() / 0.75, 1.0, 0.005);
   EXPECT_NEAR(j["measured"]["contact_time"].get<double>() / 0.1, 1.0, 0.005);
 }
