@@ -4,10 +4,13 @@
 # The peer inputs live in ../shared/peers (see its README); scenes: fixed target, t = 0..40
 # (20,000 steps of dt = 0.002), LAMMPS gran/hooke/history ("gh", its fastest route).
 # Usage: bench/peers/compare_lammps.sh [PEERS_DIR]   (run from the repository root, after
-# scripts/setup.sh). Installs lammps if it is missing.
+# scripts/setup.sh). Installs lammps if it is missing. Environment: GRANJET, the granjet binary
+# to measure (default build/app/granjet; e.g. one built for another -march).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 peers=$(cd "${1:-$root/../shared/peers}" && pwd)
+granjet=${GRANJET:-$root/build/app/granjet}
+[ -x "$granjet" ] || { echo "no granjet binary at $granjet: run scripts/setup.sh first" >&2; exit 1; }
 command -v lmp >/dev/null || { apt-get update -qq && apt-get install -y -qq lammps >/dev/null; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -39,7 +42,7 @@ lammps_rate() {  # input, grains, extra -var args...
 granjet_rate() {  # scene, --set args...
   local scene=$1
   shift
-  "$root/build/app/granjet" run "$root/scenes/$scene" --quiet --out "$work/g.h5" \
+  "$granjet" run "$root/scenes/$scene" --quiet --out "$work/g.h5" \
     --summary "$work/g.json" --set run.t_end=40 --set wall.kind=fixed --set output.interval=0 "$@"
   python3 -c "import json; print('%.4g' % json.load(open('$work/g.json'))['particle_steps_per_second'])"
 }
