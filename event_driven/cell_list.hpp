@@ -45,6 +45,7 @@ class CellList {
     std::vector<std::uint8_t> image;
     std::array<Vec<D>, kStencilCells> shift;
     std::size_t size = 0;
+    bool shifted = false;  // some shift is not zero (the stencil wraps around a periodic box)
   };
 
   // Tiles [0, box) with at least 3 cells per axis; a dilute box gets larger cells rather than a
@@ -220,6 +221,7 @@ class CellList {
     std::array<std::array<std::int64_t, 3>, D> index;
     std::array<std::array<double, 3>, D> shift;
     std::array<int, D> count{};
+    bool wraps = false;
   };
 
   void add_offsets(Stencil& s, int a, int c, int first, int last) const {
@@ -236,6 +238,7 @@ class CellList {
       }
       s.index[a][s.count[a]] = k;
       s.shift[a][s.count[a]] = shift;
+      s.wraps |= shift != 0.0;
       ++s.count[a];
     }
   }
@@ -286,6 +289,7 @@ class CellList {
       }
     }
     out.size = n;
+    out.shifted = s.wraps;
   }
 
   // Lists the cells of the stencil, the m-th with image m; pick[a] is the stencil entry taken

@@ -83,6 +83,17 @@ struct NearestImage {
   Vec<D> x_i, box, inv_box;
 };
 
+// As the cells take it when no image is shifted (x_k + 0 would be x_k): the partner where it is.
+template <int D>
+struct SameImage {
+  LaneVec<D> operator()(const LaneAt&, const LaneVec<D>& x_k) const {
+    LaneVec<D> dr;
+    for (int a = 0; a < D; ++a) dr[a] = x_k[a] - x_i[a];
+    return dr;
+  }
+  Vec<D> x_i;
+};
+
 // As the cells take it: partner m's image is shifted by shift[image[m]] (CellList's
 // Neighbourhood).
 template <int D>

@@ -406,9 +406,13 @@ void EdSimulator<D>::predict_new_layer(std::uint32_t i, const Crossing& moved) {
 
 template <int D>
 void EdSimulator<D>::merge_hood(std::uint32_t i, Prediction best, Prediction second) {
-  merge(i, hood_.grain.data(), hood_.size,
-        ShiftedImage<D>{flight_[i].position_at(clock_), hood_.shift.data(), hood_.image.data()},
-        best, second);
+  const Vec<D> x_i = flight_[i].position_at(clock_);
+  // Most stencils do not wrap around the box: their scans skip the shifts, as good as zero.
+  if (hood_.shifted)
+    merge(i, hood_.grain.data(), hood_.size,
+          ShiftedImage<D>{x_i, hood_.shift.data(), hood_.image.data()}, best, second);
+  else
+    merge(i, hood_.grain.data(), hood_.size, SameImage<D>{x_i}, best, second);
 }
 
 // The earliest two of the scan (event_driven/contact_scan.hpp, vector code), merged as if each
