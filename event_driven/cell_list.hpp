@@ -38,8 +38,9 @@ class CellList {
   };
 
   // The grains in reach of one grain, gathered before any prediction so that the pair loop runs
-  // over a flat array: grain[n] has its image near the grain at x + shift[image[n]]. It holds
-  // the grain itself: callers skip it or let it fall out (it never approaches itself).
+  // over a flat array: grain[n] has its image near the grain at x + shift[image[n]] when
+  // `shifted`, else at x (the shifts are then not written). It holds the grain itself: callers
+  // skip it or let it fall out (it never approaches itself).
   struct Neighbourhood {
     std::vector<std::uint32_t> grain;
     std::vector<std::uint8_t> image;
@@ -303,7 +304,8 @@ class CellList {
       pick[A] = o;
       const std::int64_t cell = base * n_[A] + s.index[A][o];
       if constexpr (A == 0) {
-        for (int a = 0; a < D; ++a) out.shift[m][a] = s.shift[a][pick[a]];
+        if (s.wraps)
+          for (int a = 0; a < D; ++a) out.shift[m][a] = s.shift[a][pick[a]];
         cells[m++] = cell < 0 ? outside_cell_ : static_cast<std::size_t>(cell);
       } else {
         walk<A - 1, kCount>(s, cell, pick, out, cells, m);

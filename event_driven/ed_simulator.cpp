@@ -640,9 +640,10 @@ void EdSimulator<D>::check_no_overlaps() const {
       if (k == i) continue;
       const double sigma = flight_[i].radius + flight_[k].radius;
       const Vec<D> x_k = flight_[k].position_at(now);
-      const double distance = (binned ? cells_.minimum_image(Vec<D>(x_k - x_i))
-                                      : Vec<D>(x_k + hood.shift[hood.image[m]] - x_i))
-                                  .norm();
+      const double distance =
+          (binned ? cells_.minimum_image(Vec<D>(x_k - x_i))
+                  : Vec<D>((hood.shifted ? x_k + hood.shift[hood.image[m]] : x_k) - x_i))
+              .norm();
       if (distance < (1.0 - kContactTolerance) * sigma)
         throw BlowUpError(
             "overlap: distance " + std::to_string(distance) + " < " + std::to_string(sigma),
