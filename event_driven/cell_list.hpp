@@ -38,13 +38,15 @@ class CellList {
   };
 
   // The grains in reach of one grain, gathered before any prediction so that the pair loop runs
-  // over a flat array: grain[n] has its image near the grain at x + shift[image[n]]. It holds
-  // the grain itself: callers skip it or let it fall out (it never approaches itself).
+  // over a flat array: grain[n] has its image near the grain at x + shift[image[n]] when
+  // `shifted`, else at x (the shifts and images are then not written). It holds the grain itself: callers
+  // skip it or let it fall out (it never approaches itself).
   struct Neighbourhood {
     std::vector<std::uint32_t> grain;
     std::vector<std::uint8_t> image;
     std::array<Vec<D>, kStencilCells> shift;
     std::size_t size = 0;
+    bool shifted = false;  // some shift is not zero (the stencil wraps around a periodic box)
   };
 
   // Tiles [0, box) with at least 3 cells per axis; a dilute box gets larger cells rather than a
@@ -158,7 +160,10 @@ class CellList {
   void gather(std::uint32_t grain, Neighbourhood& out) const {
     Stencil s;
     for (int a = 0; a < D; ++a) add_offsets(s, a, coords_[grain][a], -1, 1);
-    gather_stencil<3>(s, out);
+    if (s.wraps)
+      gather_stencil<3, true>(s, out);
+    else
+      gather_stencil<3, false>(s, out);
   }
 
   // Only the layer of cells that came into reach when the grain moved across a face of `axis`
@@ -170,7 +175,10 @@ class CellList {
         add_offsets(s, a, coords_[grain][a], direction, direction);
       else
         add_offsets(s, a, coords_[grain][a], -1, 1);
-    gather_stencil<0>(s, out);
+    if (s.wraps)
+      gather_stencil<0, true>(s, out);
+    else
+      gather_stencil<0, false>(s, out);
   }
 
  private:
@@ -220,6 +228,7 @@ class CellList {
     std::array<std::array<std::int64_t, 3>, D> index;
     std::array<std::array<double, 3>, D> shift;
     std::array<int, D> count{};
+    bool wraps = false;
   };
 
   void add_offsets(Stencil& s, int a, int c, int first, int last) const {
@@ -236,6 +245,7 @@ class CellList {
       }
       s.index[a][s.count[a]] = k;
       s.shift[a][s.count[a]] = shift;
+      s.wraps |= shift != 0.0;
       ++s.count[a];
     }
   }
@@ -243,8 +253,9 @@ class CellList {
   // kCount 3: the full stencil, with loops of fixed length that the compiler unrolls; 0: the
   // counts of the stencil (a layer). The cells are listed first, then read in one loop whose
   // count and pointers are locals: the image bytes written may alias any member, which would
-  // force them through memory, the count a loop-carried store and reload per cell.
-  template <int kCount>
+  // force them through memory, the count a loop-carried store and reload per cell. kWraps: the
+  // stencil wraps around the box (Stencil::wraps); else no image is read, and none is written.
+  template <int kCount, bool kWraps>
   void gather_stencil(const Stencil& s, Neighbourhood& out) const {
     std::array<std::size_t, kStencilCells> cells;
     std::uint8_t m = 0;
@@ -270,8 +281,10 @@ class CellList {
       const std::uint32_t k1 = next[k0];
       slot[n] = k0;
       slot[n + 1] = k1;
-      slot_image[n] = c;
-      slot_image[n + 1] = c;
+      if constexpr (kWraps) {
+        slot_image[n] = c;
+        slot_image[n + 1] = c;
+      }
       n += (k0 != none) + (k1 != none);
       for (std::uint32_t k = next[k1]; k != none; k = next[k]) {
         // Keep two slots of room for each cell still to come.
@@ -281,11 +294,12 @@ class CellList {
           slot = out.grain.data();
           slot_image = out.image.data();
         }
-        slot[n] = k;
-        slot_image[n++] = c;
+        if constexpr (kWraps) slot_image[n] = c;
+        slot[n++] = k;
       }
     }
     out.size = n;
+    out.shifted = kWraps;
   }
 
   // Lists the cells of the stencil, the m-th with image m; pick[a] is the stencil entry taken
@@ -299,7 +313,8 @@ class CellList {
       pick[A] = o;
       const std::int64_t cell = base * n_[A] + s.index[A][o];
       if constexpr (A == 0) {
-        for (int a = 0; a < D; ++a) out.shift[m][a] = s.shift[a][pick[a]];
+        if (s.wraps)
+          for (int a = 0; a < D; ++a) out.shift[m][a] = s.shift[a][pick[a]];
         cells[m++] = cell < 0 ? outside_cell_ : static_cast<std::size_t>(cell);
       } else {
         walk<A - 1, kCount>(s, cell, pick, out, cells, m);

@@ -383,11 +383,9 @@ void EdSimulator<D>::predict_all(std::uint32_t i) {
     // Periodic, no plate. Listed grains drift up to a shell beyond the box: nearest images.
     const std::span<const std::uint32_t> list = shells_->of(i);
     const PeriodicBox<D>& space = cells_.space();
-    const Vec<D> x_i = flight_[i].position_at(clock_);
-    merge(
-        i, list.data(), list.size(),
-        [&](std::size_t, const Vec<D>& x_k) { return space.minimum_image(Vec<D>(x_k - x_i)); },
-        Prediction{}, Prediction{});
+    merge(i, list.data(), list.size(),
+          NearestImage<D>{flight_[i].position_at(clock_), space.box, space.inv_box}, Prediction{},
+          Prediction{});
     return;
   }
   cells_.gather(i, hood_);
@@ -409,56 +407,29 @@ void EdSimulator<D>::predict_new_layer(std::uint32_t i, const Crossing& moved) {
 template <int D>
 void EdSimulator<D>::merge_hood(std::uint32_t i, Prediction best, Prediction second) {
   const Vec<D> x_i = flight_[i].position_at(clock_);
-  const std::uint8_t* const image = hood_.image.data();
-  const auto& shift = hood_.shift;
-  merge(
-      i, hood_.grain.data(), hood_.size,
-      [&](std::size_t m, const Vec<D>& x_k) { return Vec<D>(x_k + shift[image[m]] - x_i); }, best,
-      second);
+  // Most stencils do not wrap around the box: their scans skip the shifts, as good as zero.
+  if (hood_.shifted)
+    merge(i, hood_.grain.data(), hood_.size,
+          ShiftedImage<D>{x_i, hood_.shift.data(), hood_.image.data()}, best, second);
+  else
+    merge(i, hood_.grain.data(), hood_.size, SameImage<D>{x_i}, best, second);
 }
 
-// Three passes over the grains, each a loop without branches on the data, as vector code:
-// b = dr.dv, c = dr^2 - sigma^2, a = dv^2 of each pair (an echo of the last collision taken as
-// receding, b = 0); the contact times; then the earliest two (two_earliest). Branching on each
-// time instead ("earlier than the best so far?") mispredicts several times per scan. (Members
-// are copied to locals: the compiler must see that the arrays written cannot change them.)
+// The earliest two of the scan (event_driven/contact_scan.hpp, vector code), merged as if each
+// grain were merged in turn, in the order of the list: an unknown runner-up (kUnknown) stays
+// unknown unless a new earliest displaces the old.
 template <int D>
 template <class Separation>
 void EdSimulator<D>::merge(std::uint32_t i, const std::uint32_t* grain, std::size_t n,
-                           Separation separation, Prediction best, Prediction second) {
-  const std::size_t padded = (n + kEarliestLanes - 1) / kEarliestLanes * kEarliestLanes;
-  if (pair_b_.size() < padded) {
-    pair_b_.resize(std::max(padded, hood_.grain.size() + kEarliestLanes));
-    pair_c_.resize(pair_b_.size());
-    pair_a_.resize(pair_b_.size());
-  }
-  const double now = clock_;
-  const Vec<D> v_i = flight_[i].v;
-  const double r_i = flight_[i].radius;
-  const Flight<D>* const flight = flight_.data();
+                           const Separation& separation, Prediction best, Prediction second) {
   // The pair that collided last with each other (neither has changed velocity since, or the
   // partner is fixed) and still touches is separating, whatever the rounded dr.dv says.
   const std::uint32_t last = last_partner_[i];
   const bool mutual =
       last < flight_.size() && last != i && (fixed(last) || last_partner_[last] == i);
-  double* __restrict const pb = pair_b_.data();
-  double* __restrict const pc = pair_c_.data();
-  double* __restrict const pa = pair_a_.data();
-  for (std::size_t m = 0; m < n; ++m) {
-    const Flight<D>& fk = flight[grain[m]];
-    const double sigma = r_i + fk.radius;
-    const PairQuadratic q =
-        pair_quadratic(separation(m, fk.position_at(now)), Vec<D>(fk.v - v_i), sigma);
-    const bool echo = mutual && grain[m] == last && q.c < kEchoTolerance * sigma * sigma;
-    pb[m] = echo ? 0.0 : q.b;
-    pc[m] = q.c;
-    pa[m] = q.a;
-  }
-  for (std::size_t m = 0; m < n; ++m) pb[m] = now + contact_delay(pb[m], pc[m], pa[m]);
-  for (std::size_t m = n; m < padded; ++m) pb[m] = kNever;
-  const Earliest e = two_earliest(pb, padded);
-  // Then as if each grain were merged in turn, in the order of m: an unknown runner-up
-  // (kUnknown) stays unknown unless a new earliest displaces the old.
+  const Scanner<D> self{clock_, flight_[i].v, flight_[i].radius,
+                        mutual ? static_cast<std::int32_t>(last) : -1, kEchoTolerance};
+  const Earliest e = earliest_contacts(self, flight_.data(), grain, n, separation);
   for (const auto& [when, m] : {std::pair{e.first, e.first_at}, std::pair{e.second, e.second_at}}) {
     if (when >= best.time && when >= second.time) continue;
     const std::uint32_t k = grain[m];
@@ -669,9 +640,10 @@ void EdSimulator<D>::check_no_overlaps() const {
       if (k == i) continue;
       const double sigma = flight_[i].radius + flight_[k].radius;
       const Vec<D> x_k = flight_[k].position_at(now);
-      const double distance = (binned ? cells_.minimum_image(Vec<D>(x_k - x_i))
-                                      : Vec<D>(x_k + hood.shift[hood.image[m]] - x_i))
-                                  .norm();
+      const double distance =
+          (binned ? cells_.minimum_image(Vec<D>(x_k - x_i))
+                  : Vec<D>((hood.shifted ? x_k + hood.shift[hood.image[m]] : x_k) - x_i))
+              .norm();
       if (distance < (1.0 - kContactTolerance) * sigma)
         throw BlowUpError(
             "overlap: distance " + std::to_string(distance) + " < " + std::to_string(sigma),

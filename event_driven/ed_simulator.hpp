@@ -26,12 +26,12 @@
 #include "core/simulator.hpp"
 #include "event_driven/cell_list.hpp"
 #include "event_driven/collapse_detector.hpp"
+#include "event_driven/contact_scan.hpp"
 #include "event_driven/event_calendar.hpp"
 #include "event_driven/flight.hpp"
 #include "event_driven/neighbour_shells.hpp"
 #include "event_driven/plate.hpp"
 #include "event_driven/restitution.hpp"
-#include "event_driven/two_earliest.hpp"
 
 namespace granjet::ed {
 
@@ -101,10 +101,10 @@ class EdSimulator final : public Simulator<D> {
   void predict_new_layer(std::uint32_t i, const Crossing& moved);
   // Merges the collisions with the n grains grain[0..n) into i's earliest and runner-up,
   // starting from `best` and `second` (taken by value: a fresh scan's empty predictions then
-  // never pass through memory); separation(m, x) is the separation of grain[m] at x from i.
+  // never pass through memory); `separation` takes the grains' images (contact_scan.hpp).
   template <class Separation>
-  void merge(std::uint32_t i, const std::uint32_t* grain, std::size_t n, Separation separation,
-             Prediction best, Prediction second);
+  void merge(std::uint32_t i, const std::uint32_t* grain, std::size_t n,
+             const Separation& separation, Prediction best, Prediction second);
   void merge_hood(std::uint32_t i, Prediction best, Prediction second);
   void predict_exit(std::uint32_t i);
   void schedule(std::uint32_t i);
@@ -129,8 +129,6 @@ class EdSimulator final : public Simulator<D> {
   CellList<D> cells_;
   std::optional<NeighbourShells<D>> shells_;  // dense periodic gases (listed())
   typename CellList<D>::Neighbourhood hood_;  // scratch of the predictions
-  // And the pairs' quadratics (contact_delay), padded to whole kEarliestLanes.
-  std::vector<double> pair_b_, pair_c_, pair_a_;
   Calendar calendar_;
   CollapseDetector collapse_;
 

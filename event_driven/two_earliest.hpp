@@ -57,30 +57,45 @@ inline EarliestLanes swapped(const EarliestLanes& e, int half) {
 
 }  // namespace detail
 
-// The earliest of t[0, n) and the earliest of the others, each at the smallest index among equal
-// times: what a scan in the order of the index with strict comparisons keeps. n is a multiple of
-// kEarliestLanes. Each lane keeps the earliest two of its times (its indices rise, so a strict
-// comparison keeps the smaller index), then the lanes are ranked together, halves against
-// halves.
-inline Earliest two_earliest(const double* t, std::size_t n) {
-  static_assert(kEarliestLanes == 4, "the lanes are ranked together in two rounds of four");
-  using detail::Lanes;
-  const Lanes never = Lanes{} + kNever;
-  detail::EarliestLanes e{never, Lanes{}, never, Lanes{}};
-  Lanes at = {0.0, 1.0, 2.0, 3.0};
-  for (std::size_t base = 0; base < n; base += kEarliestLanes) {
-    Lanes time;
-    __builtin_memcpy(&time, t + base, sizeof time);
-    const detail::Mask before_first = time < e.t1, before_second = time < e.t2;
-    e.t2 = before_first ? e.t1 : before_second ? time : e.t2;
-    e.m2 = before_first ? e.m1 : before_second ? at : e.m2;
-    e.t1 = before_first ? time : e.t1;
-    e.m1 = before_first ? at : e.m1;
-    at += static_cast<double>(kEarliestLanes);
+// The earliest time fed and the earliest of the others, each at the smallest index among equal
+// times: what a scan in the order of the index with strict comparisons keeps. Times come
+// kEarliestLanes at a time, at indices 0, 1, 2, ... in turn. Each lane keeps the earliest two of
+// its times (its indices rise, so a strict comparison keeps the smaller index), then the lanes
+// are ranked together, halves against halves.
+class TwoEarliest {
+ public:
+  void add(detail::Lanes time) {
+    const detail::Mask before_first = time < e_.t1, before_second = time < e_.t2;
+    e_.t2 = before_first ? e_.t1 : before_second ? time : e_.t2;
+    e_.m2 = before_first ? e_.m1 : before_second ? at_ : e_.m2;
+    e_.t1 = before_first ? time : e_.t1;
+    e_.m1 = before_first ? at_ : e_.m1;
+    at_ += static_cast<double>(kEarliestLanes);
   }
-  e = detail::rank_with(e, detail::swapped(e, 2));
-  e = detail::rank_with(e, detail::swapped(e, 1));
-  return {e.t1[0], static_cast<std::size_t>(e.m1[0]), e.t2[0], static_cast<std::size_t>(e.m2[0])};
+
+  Earliest result() const {
+    static_assert(kEarliestLanes == 4, "the lanes are ranked together in two rounds of four");
+    detail::EarliestLanes e = detail::rank_with(e_, detail::swapped(e_, 2));
+    e = detail::rank_with(e, detail::swapped(e, 1));
+    return {e.t1[0], static_cast<std::size_t>(e.m1[0]), e.t2[0],
+            static_cast<std::size_t>(e.m2[0])};
+  }
+
+ private:
+  static constexpr detail::Lanes kNeverLanes = {kNever, kNever, kNever, kNever};
+  detail::EarliestLanes e_{kNeverLanes, detail::Lanes{}, kNeverLanes, detail::Lanes{}};
+  detail::Lanes at_ = {0.0, 1.0, 2.0, 3.0};
+};
+
+// The earliest two of t[0, n), n a multiple of kEarliestLanes.
+inline Earliest two_earliest(const double* t, std::size_t n) {
+  TwoEarliest earliest;
+  for (std::size_t base = 0; base < n; base += kEarliestLanes) {
+    detail::Lanes time;
+    __builtin_memcpy(&time, t + base, sizeof time);
+    earliest.add(time);
+  }
+  return earliest.result();
 }
 
 }  // namespace granjet::ed

@@ -26,20 +26,21 @@ std::vector<Vec<D>> random_points(const Vec<D>& box, std::size_t n, std::uint64_
   return x;
 }
 
-// The gathered neighbours other than i as (k -> separation x_k + shift - x_i), each at most
-// once; i itself (gathered with its own cell) with no shift.
+// The gathered neighbours other than i as (k -> separation x_k + shift - x_i, the shift zero
+// unless the neighbourhood is shifted), each at most once; i itself (gathered with its own
+// cell) with no shift.
 template <int D>
 std::map<std::uint32_t, Vec<D>> reach(std::uint32_t i, const std::vector<Vec<D>>& x,
                                       const typename CellList<D>::Neighbourhood& hood) {
   std::map<std::uint32_t, Vec<D>> out;
   for (std::size_t m = 0; m < hood.size; ++m) {
     const std::uint32_t k = hood.grain[m];
+    const Vec<D> shift = hood.shifted ? hood.shift[hood.image[m]] : Vec<D>::Zero();
     if (k == i) {
-      EXPECT_EQ(hood.shift[hood.image[m]], Vec<D>::Zero());
+      EXPECT_EQ(shift, Vec<D>::Zero());
       continue;
     }
-    EXPECT_TRUE(out.emplace(k, Vec<D>(x[k] + hood.shift[hood.image[m]] - x[i])).second)
-        << "gathered twice: " << k;
+    EXPECT_TRUE(out.emplace(k, Vec<D>(x[k] + shift - x[i])).second) << "gathered twice: " << k;
   }
   return out;
 }
