@@ -105,7 +105,6 @@ EdSimulator<D>::EdSimulator(const Scene& scene, Particles<D> grains, Verificatio
   alive_.assign(n, 1);
   shift_every_ = kShiftEventsPerGrain * std::max<std::int64_t>(1, free_grains);
   predict_anew();
-  take_snapshot();
   initial_energy_ = energy().total() + removed_energy_;  // removed at the start counts
   if (verify_ == Verification::kOn) check_no_overlaps();
 }
@@ -208,7 +207,7 @@ void EdSimulator<D>::restore(const StateArchive& a) {
     transfers_.push_back({pair.at(2 * k), pair.at(2 * k + 1), at_i.at(k), at_j.at(k), impulse[k]});
   predict_anew();
   snapshot_removed_ = -1;  // other grains than the constructor's snapshot
-  take_snapshot();
+  snapshot_current_ = false;
 }
 
 template <int D>
@@ -223,7 +222,7 @@ void EdSimulator<D>::advance_to(double t) {
     if (++events_since_shift_ >= shift_every_) shift_time_origin();
   }
   time_ = std::max(time_, stopped ? origin_ + clock_ : t);
-  take_snapshot();
+  snapshot_current_ = false;
   if (verify_ == Verification::kOn) check_no_overlaps();
 }
 
@@ -530,8 +529,9 @@ void EdSimulator<D>::report_collapse(std::uint32_t i, std::uint32_t j) const {
 }
 
 template <int D>
-void EdSimulator<D>::take_snapshot() {
+void EdSimulator<D>::take_snapshot() const {
   const double now = time_ - origin_;
+  snapshot_current_ = true;
   if (snapshot_removed_ == stats_.removed) {
     // The same grains as the last snapshot: only positions and velocities change (hard grains
     // keep their spins), so the store is refreshed in place instead of rebuilt.

@@ -11,8 +11,9 @@
 // counter has moved on (the partner collided meanwhile), the event is stale: the runner-up
 // takes over if it is still valid, else the grain scans again (lazy invalidation, DynamO
 // style). Grain states are delayed: each keeps its own time and is
-// streamed only when an event touches it; particles() is a snapshot taken at advance_to(t), so
-// when the caller looks never perturbs the trajectory. The time origin moves forward every few
+// streamed only when an event touches it; particles() is a snapshot of time(), taken when first
+// asked for after advance_to(t), so when (and whether) the caller looks never perturbs the
+// trajectory. The time origin moves forward every few
 // events per grain, so event times keep their precision in long runs.
 #pragma once
 
@@ -54,11 +55,16 @@ class EdSimulator final : public Simulator<D> {
               NeighbourSearch search = NeighbourSearch::kByDensity);
 
   std::string_view backend() const override { return "event_driven"; }
-  // Processes every event up to t and takes the snapshot at t. Throws BlowUpError on inelastic
+  // Processes every event up to t. Throws BlowUpError on inelastic
   // collapse (and, verifying, on an overlap).
   void advance_to(double t) override;
   double time() const override { return time_; }
-  const Particles<D>& particles() const override { return snapshot_; }
+  // Taken only when asked for: a run's observers stop it every sample interval but seldom look
+  // at every grain.
+  const Particles<D>& particles() const override {
+    if (!snapshot_current_) take_snapshot();
+    return snapshot_;
+  }
   // Every collision impulse since the last call, with both positions at the collision (the
   // partner's periodic image next to the grain). A plate collision has partner id kPlateId and
   // the grain's mirror image through the face as partner position (Plate::mirror).
@@ -111,7 +117,7 @@ class EdSimulator final : public Simulator<D> {
   void shift_time_origin();
   double flight_time() const;
   [[noreturn]] void report_collapse(std::uint32_t i, std::uint32_t j) const;
-  void take_snapshot();
+  void take_snapshot() const;
   void check_contact(std::uint32_t i, std::uint32_t j, double distance) const;
   void check_plate_contact(std::uint32_t i) const;
   void check_no_overlaps() const;
@@ -119,8 +125,9 @@ class EdSimulator final : public Simulator<D> {
 
   Scene scene_;
   Particles<D> grains_;    // ids, kinds, radii, masses and spins as built (never reordered)
-  Particles<D> snapshot_;  // the grains still in the run, at time()
-  std::int64_t snapshot_removed_ = -1;  // grains removed when the snapshot's store was built
+  mutable Particles<D> snapshot_;  // the grains still in the run, at time()
+  mutable bool snapshot_current_ = false;
+  mutable std::int64_t snapshot_removed_ = -1;  // grains removed when its store was built
   Verification verify_;
   Restitution restitution_;
   std::optional<Plate<D>> plate_;
