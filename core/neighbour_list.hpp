@@ -75,9 +75,18 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
       std::size_t forward_grains = 0;
       grid.for_each_forward_neighbour(c, [&](std::size_t other) {
         if (grid.start(other) == grid.start(other + 1)) return;
-        ranges.emplace_back(grid.start(other), grid.start(other + 1));
         forward_grains += grid.start(other + 1) - grid.start(other);
+        // Cells side by side along the first axis hold consecutive grains: one run, one loop
+        // (the end of each short loop is a likely misprediction).
+        if (!ranges.empty() && ranges.back().second == grid.start(other))
+          ranges.back().second = grid.start(other + 1);
+        else
+          ranges.emplace_back(grid.start(other), grid.start(other + 1));
       });
+      // The cell's own grains and the next cell's run on into each other too.
+      const bool joined = !ranges.empty() && ranges.front().first == end;
+      const std::uint32_t own_end = joined ? ranges.front().second : end;
+      const auto others = std::span(ranges).subspan(joined ? 1 : 0);
       for (std::uint32_t i = begin; i < end; ++i) {
         // Room for every candidate: each is written, and kept only if it is a neighbour, with
         // no branch (about one candidate in ten is, in no order a predictor could learn).
@@ -92,8 +101,8 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
           slot[count] = j;
           count += near;
         };
-        for (std::uint32_t j = i + 1; j < end; ++j) consider(j);
-        for (const auto& [first, last] : ranges)
+        for (std::uint32_t j = i + 1; j < own_end; ++j) consider(j);
+        for (const auto& [first, last] : others)
           for (std::uint32_t j = first; j < last; ++j) consider(j);
         out.first[i + 1] = static_cast<std::uint32_t>(count);  // within the chunk
       }

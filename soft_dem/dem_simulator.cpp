@@ -28,6 +28,7 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
       overlap_limit_(scene.run.max_overlap),
       tethered_(scene.has_tethered_wall()),
       threads_(scene.run.threads),
+      quiet_(scene.run.threads),
       pass_(scene.run.threads, scene.run.max_overlap) {
   if (scene.has_plate()) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites

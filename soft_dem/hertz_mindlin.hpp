@@ -197,8 +197,8 @@ struct HertzMindlinOf {
       // the limit, so the division's infinity is never selected.
       const bool slides = f_t2 > limit * limit;
       const V sliding = trial * (limit / std::sqrt(f_t2));
-      const V f_t = slides ? sliding : trial;
-      shear = slides ? V(-(sliding + c_t * v_t) * (1.0 / k_t)) : shear;
+      const V f_t = select_components<D>(slides, sliding, trial);
+      shear = select_components<D>(slides, V(-(sliding + c_t * v_t) * (1.0 / k_t)), shear);
       f += f_t;
     }
     return f;

@@ -93,8 +93,8 @@ struct LinearSpringDashpot {
       const double f_t2 = trial.squaredNorm();
       const bool slides = f_t2 > limit * limit;
       const V sliding = trial * (limit / std::sqrt(f_t2));
-      const V f_t = slides ? sliding : trial;
-      shear = slides ? V(-(sliding + c.eta_t * v_t) * inv_kt) : shear;
+      const V f_t = select_components<D>(slides, sliding, trial);
+      shear = select_components<D>(slides, V(-(sliding + c.eta_t * v_t) * inv_kt), shear);
       f += f_t;
     }
     return f;

@@ -33,6 +33,9 @@ class QuietPairs {
   static constexpr int kMaxAge = 128;
   static constexpr int kMargin = 3;
 
+  // threads: how many share the last pass over the pairs (the same list for any count).
+  explicit QuietPairs(int threads = 1) : threads_(threads) {}
+
   // The listed pairs to test (increasing pair-list indices), for the pass about to run.
   std::span<const std::uint32_t> tested() const { return tested_; }
   // Whether the classification still holds for the next pass.
@@ -95,14 +98,28 @@ class QuietPairs {
     // contact test itself.
     const double reach_of_x = largest + 2.0 * kMaxAge * step * shared.cwiseAbs().maxCoeff();
     const double drift = 2.0 * kMaxAge * std::sqrt(double{D}) * 0x1p-52 * reach_of_x;
-    std::size_t count = 0;
-    for (std::size_t k = 0; k < listed; ++k) {
-      const std::uint32_t i = pair_row[k], j = pairs.partner[k];
-      const double apart = reach(i, j) * (1.0 + 0x1p-40) + drift;
-      const bool skip = (trusted_[i] & trusted_[j]) != 0 &&
-                        space.separation(x[i], x[j]).squaredNorm() > apart * apart;
-      tested_[count] = static_cast<std::uint32_t>(k);
-      count += !skip;
+    // Each thread writes the kept indices of its stretch of pairs at the stretch's start; the
+    // stretches then move down into one list, in order.
+    std::vector<std::size_t> kept(threads_, 0);
+#pragma omp parallel for num_threads(threads_) schedule(static, 1) if (threads_ > 1)
+    for (int t = 0; t < threads_; ++t) {
+      const std::size_t begin = listed * t / threads_, end = listed * (t + 1) / threads_;
+      std::size_t count = begin;
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint32_t i = pair_row[k], j = pairs.partner[k];
+        const double apart = reach(i, j) * (1.0 + 0x1p-40) + drift;
+        const bool skip = (trusted_[i] & trusted_[j]) != 0 &&
+                          space.separation(x[i], x[j]).squaredNorm() > apart * apart;
+        tested_[count] = static_cast<std::uint32_t>(k);
+        count += !skip;
+      }
+      kept[t] = count - begin;
+    }
+    std::size_t count = kept[0];
+    for (int t = 1; t < threads_; ++t) {
+      const std::size_t begin = listed * t / threads_;
+      for (std::size_t m = 0; m < kept[t]; ++m) tested_[count + m] = tested_[begin + m];
+      count += kept[t];
     }
     tested_.resize(count);
   }
@@ -116,6 +133,7 @@ class QuietPairs {
   }
 
  private:
+  int threads_;
   int age_ = kMaxAge;
   std::vector<std::uint8_t> trusted_, next_;  // per grain: its pairs with trusted grains skip
   std::vector<std::uint32_t> tested_;
