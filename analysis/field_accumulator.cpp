@@ -2,7 +2,8 @@
 //   n, phi, v.a, T_g, T_alpha.a                       number density, packing fraction, mean
 //                                                     velocity, temperatures (spec §6)
 //   stress.ab, stress_kinetic.ab, stress_contact.ab   total and parts, local frame [6.1]
-//   stress_xyz.ab (3D)                                total, Cartesian components
+//   stress_xyz.ab (3D)                                total, Cartesian components (every
+//                                                     transfer, whatever wall_contacts says)
 //   P, P_over_nT, P_over_nT_alpha.a                   tr(sigma)/D, [5.2] and its directional form
 //   D, mu_star, eta, eta_star                         shear rate, -sigma_shear/P, -sigma_shear/D,
 //                                                     eta over the dilute viscosity
@@ -10,9 +11,11 @@
 //   flatness.a                                        <c^4>/<c^2>^2 of the bin's scaled velocities
 // The contact stress split by contact type and direction, and the contacts' geometry (issue 13),
 // all from the same transfers and segment fractions A as stress_contact, in the local frame:
-//   stress_contact_wall.ab     the part of stress_contact from transfers with a target (wall)
-//                              grain or the plate (partner kPlateId) on either side; the flowing
-//                              grains' own part is stress_contact - stress_contact_wall
+//   stress_contact_wall.ab     the transfers with a target (wall) grain or the plate (partner
+//                              kPlateId) on either side; the flowing grains' own part is
+//                              stress_contact - stress_contact_wall, and stress_contact (with
+//                              stress, P, mu_star ...) is that part alone when
+//                              FieldOptions::wall_contacts is false (analysis.stress_wall_contacts)
 //   stress_contact_normal.ab   the part from the normal component J_n = (J.n) n of each
 //                              impulse, n = (r_i - r_j)/|r_i - r_j| along the line of centres
 //                              (plate: grain and mirror image); J_n r^T = (J.r) n n^T is
@@ -171,7 +174,8 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
                  : Mat::Zero();
     // [C.31]-[C.33]: no transfer time means no contact information (e.g. stored frames only).
     const double contact_norm = transfer_time_ > 0.0 ? 1.0 / (volume * transfer_time_) : kNaN;
-    const Mat contact = s.contact * contact_norm;
+    const Mat contact = (options.wall_contacts ? s.contact : Mat(s.contact - s.contact_wall)) *
+                        contact_norm;
     const Mat stress = kinetic + contact;
     const double t_g = fluct.trace() / (D * s.count);  // T_g = sum m u^2 / (D N)
     const double pressure = stress.trace() / D;        // P = tr(sigma)/D

@@ -43,6 +43,9 @@ using BinCoordinates = std::conditional_t<D == 3, CylindricalRings, CartesianLay
 struct FieldOptions {
   double restitution = 0.75;  // e in eta_kin of the yield stress: e-bar [2.55] for frictional
   double diameter = 1.0;      // d in I, I_T, eta* and eta_kin
+  // Whether the contact stress counts the transfers with target grains or the plate; without
+  // them it is the flowing grains' own (stress_contact - stress_contact_wall).
+  bool wall_contacts = true;
 };
 
 template <int D>

@@ -71,7 +71,10 @@ AnalysisConfig AnalysisConfig::for_scene(const Scene& scene) {
   c.options.restitution =
       contact.friction > 0.0 ? kinetic::effective_restitution(contact.restitution, contact.friction)
                              : contact.restitution;
+  c.options.wall_contacts = a.stress_wall_contacts == WallContacts::kInclude;
   c.scatter_radius = scatter_radius_of(scene, c.bins.target_radius);
+  c.psi0_reading = a.psi0;
+  c.incident_speed = scene.jet.speed;
   c.reference_azimuth = kShortSideAzimuth;
   if (scene.dimension == 2 && scene.wall.kind == WallKind::kPlate)
     c.free_streamline_psi0 = free_streamline::exit_angle(scene.wall.diameter / scene.jet.diameter);
@@ -82,7 +85,7 @@ template <int D>
 RunAnalysis<D>::RunAnalysis(const AnalysisConfig& config)
     : config_(config),
       fields_(config.bins),
-      scattering_(config.scatter_radius, config.reference_azimuth) {
+      scattering_(config.scatter_radius, config.reference_azimuth, config.incident_speed) {
   if (!(config.sample_interval > 0.0))
     throw std::invalid_argument("analysis: sample_interval must be positive");
 }
@@ -145,10 +148,16 @@ RunResult RunAnalysis<D>::finish() const {
     r.global.set("flatness_bin." + axis, 0, vdf.flatness(a));
     r.global.set("flatness_region." + axis, 0, vdf.flatness_region(a));
   }
-  r.global.set("psi0", 0, scattering_.psi0());
+  // psi0 under both readings (spec §6, [4.3]); psi0 and psi0_window are analysis.psi0's.
   const double slack = 0.5 * config_.sample_interval;  // as in_window
+  const double t0 = config_.window_start - slack, t1 = config_.window_end + slack;
+  const bool momentum = config_.psi0_reading == Psi0Reading::kMomentum;
+  r.global.set("psi0_departure", 0, scattering_.psi0());
+  r.global.set("psi0_momentum", 0, scattering_.psi0_momentum());
+  r.global.set("psi0", 0, momentum ? scattering_.psi0_momentum() : scattering_.psi0());
   r.global.set("psi0_window", 0,
-               scattering_.psi0_between(config_.window_start - slack, config_.window_end + slack));
+               momentum ? scattering_.psi0_momentum_between(t0, t1)
+                        : scattering_.psi0_between(t0, t1));
   if constexpr (D == 3) r.global.set("v2", 0, scattering_.v2());
   if (!std::isnan(config_.free_streamline_psi0))
     r.global.set("psi0_free_streamline", 0, config_.free_streamline_psi0);

@@ -39,6 +39,8 @@ struct AnalysisConfig {
   BinSpec bins;
   FieldOptions options;
   double scatter_radius = 16.5;  // grains beyond this distance from the jet axis are scattered
+  Psi0Reading psi0_reading = Psi0Reading::kDeparture;  // what global psi0 and psi0_window are
+  double incident_speed = 1.0;                         // u0, for the momentum reading of psi0
   // phi = 0 of the azimuthal distribution (3D): towards the middle of a rectangular jet's short
   // side, e_x (for_scene).
   double reference_azimuth = 0.0;
@@ -67,7 +69,8 @@ struct RunResult {
   Table fields;   // per bin: FieldAccumulator::fields()
   Table global;   // one row: flatness_bin.a and flatness_region.a (T5.1: scaled by each bin's
                   // T_a, or by one T_a for the region), psi0, psi0_window (of the grains
-                  // scattered within the time window), v2 (3D), scattered, samples,
+                  // scattered within the time window; both by analysis.psi0's reading),
+                  // psi0_departure and psi0_momentum (whole run), v2 (3D), scattered, samples,
                   // transfer_time, window_start, window_end; psi0_free_streamline (2D plate)
   Table vdf;      // per histogram interval: "c" (its centre), "density.a" (each bin's scaling)
   Table azimuth;  // per interval of [0, 2 pi): "phi" (its centre), "dN_dphi" over its mean (3D)

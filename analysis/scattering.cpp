@@ -36,6 +36,17 @@ double scattering_angle(std::span<const Vec<D>> velocities) {
   return n == 0 ? kNaN : std::atan2(along_wall, forward);
 }
 
+template <int D>
+double momentum_scattering_angle(std::span<const Vec<D>> velocities,
+                                 std::span<const double> masses, double incident_speed) {
+  double forward = 0.0, mass = 0.0;
+  for (std::size_t k = 0; k < velocities.size(); ++k) {
+    forward += masses[k] * -velocities[k][kJetAxis<D>];  // the jet travels along -e_jet
+    mass += masses[k];
+  }
+  return mass > 0.0 ? std::acos(forward / (incident_speed * mass)) : kNaN;  // NaN beyond [-1, 1]
+}
+
 double anisotropy_v2(std::span<const double> azimuths) {
   if (azimuths.empty()) return kNaN;
   double sum = 0.0;
@@ -54,6 +65,7 @@ void ScatteringMeasurement<D>::observe(const Particles<D>& particles, double tim
     if (seen_[id]) continue;
     seen_[id] = true;
     velocity_.push_back(particles.velocity()[i]);
+    mass_.push_back(particles.mass()[i]);
     time_.push_back(time);
     if constexpr (D == 3) azimuth_.push_back(std::atan2(x.y(), x.x()) - reference_);
   }
@@ -65,6 +77,18 @@ double ScatteringMeasurement<D>::psi0_between(double t0, double t1) const {
   for (std::size_t k = 0; k < velocity_.size(); ++k)
     if (time_[k] >= t0 && time_[k] <= t1) in_window.push_back(velocity_[k]);
   return scattering_angle<D>(in_window);
+}
+
+template <int D>
+double ScatteringMeasurement<D>::psi0_momentum_between(double t0, double t1) const {
+  std::vector<Vec<D>> velocity;
+  std::vector<double> mass;
+  for (std::size_t k = 0; k < velocity_.size(); ++k)
+    if (time_[k] >= t0 && time_[k] <= t1) {
+      velocity.push_back(velocity_[k]);
+      mass.push_back(mass_[k]);
+    }
+  return momentum_scattering_angle<D>(velocity, mass, incident_speed_);
 }
 
 template <int D>
@@ -81,6 +105,10 @@ std::vector<double> ScatteringMeasurement<D>::azimuthal_distribution(int bins) c
 
 template double scattering_angle<2>(std::span<const Vec<2>>);
 template double scattering_angle<3>(std::span<const Vec<3>>);
+template double momentum_scattering_angle<2>(std::span<const Vec<2>>, std::span<const double>,
+                                             double);
+template double momentum_scattering_angle<3>(std::span<const Vec<3>>, std::span<const double>,
+                                             double);
 template class ScatteringMeasurement<2>;
 template class ScatteringMeasurement<3>;
 

@@ -5,7 +5,9 @@
 // cut can remove it.
 #pragma once
 
+#include <limits>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/particles.hpp"
@@ -19,6 +21,16 @@ namespace granjet::analysis {
 template <int D>
 double scattering_angle(std::span<const Vec<D>> velocities);
 
+// The momentum-balance reading of psi0 [4.3]: grains that arrived along -e_jet at `incident_speed`
+// and leave with `velocities` took the impulse sum m (v + u0 e_in)... from the target; with
+// 1 - cos psi0 = that impulse along the axis over the incident momentum sum m u0,
+// cos psi0 = sum m v . (-e_jet) / (u0 sum m). For a perfect fluid (every |v| = u0, one direction)
+// it is the departure angle; slower grains at the same angle give a larger psi0. NaN for no
+// grains or a cosine beyond [-1, 1] (grains that left faster than they came).
+template <int D>
+double momentum_scattering_angle(std::span<const Vec<D>> velocities,
+                                 std::span<const double> masses, double incident_speed);
+
 // v2 = <cos 2 phi>: with dN/dphi = v0 (1 + 2 v2 cos 2phi + ...), the cos 2phi Fourier coefficient
 // over the mean v0 (the convention of elliptic flow). NaN for no angles.
 double anisotropy_v2(std::span<const double> azimuths);
@@ -28,8 +40,9 @@ class ScatteringMeasurement {
  public:
   // `reference_azimuth`: the direction (angle from e_x about the jet axis) from the axis towards
   // the middle of the jet cross section's short side, from which phi is measured (3D).
-  ScatteringMeasurement(double radius, double reference_azimuth)
-      : radius_(radius), reference_(reference_azimuth) {}
+  // `incident_speed`: u0, the speed every jet grain arrives with (the momentum reading).
+  ScatteringMeasurement(double radius, double reference_azimuth, double incident_speed = 1.0)
+      : radius_(radius), reference_(reference_azimuth), incident_speed_(incident_speed) {}
 
   // `time`: the snapshot's time, kept with each grain first seen in it.
   void observe(const Particles<D>& particles, double time);
@@ -38,9 +51,13 @@ class ScatteringMeasurement {
   std::span<const Vec<D>> velocities() const { return velocity_; }
   std::span<const double> azimuths() const { return azimuth_; }  // 3D; empty in 2D
   double psi0() const { return scattering_angle<D>(velocity_); }
+  double psi0_momentum() const {
+    return momentum_scattering_angle<D>(velocity_, mass_, incident_speed_);
+  }
   // psi0 of the grains first seen scattered in t0 <= t <= t1: the steady flow's, without the
   // first impact's splash (the exact benchmark of spec §7b is a steady solution).
   double psi0_between(double t0, double t1) const;
+  double psi0_momentum_between(double t0, double t1) const;
   double v2() const { return anisotropy_v2(azimuth_); }
   // dN/dphi over `bins` equal intervals of [0, 2 pi), divided by its mean (v0).
   std::vector<double> azimuthal_distribution(int bins) const;
@@ -51,13 +68,24 @@ class ScatteringMeasurement {
     v("velocity", velocity_);
     v("time", time_);
     v("azimuth", azimuth_);
+    // Checkpoints written before the momentum reading have no masses: it is NaN after such a
+    // resume rather than a guess.
+    if constexpr (requires { v.contains(std::string()); }) {
+      if (!v.contains("mass")) {
+        mass_.assign(velocity_.size(), std::numeric_limits<double>::quiet_NaN());
+        return;
+      }
+    }
+    v("mass", mass_);
   }
 
  private:
   double radius_;
   double reference_;
+  double incident_speed_;
   std::vector<bool> seen_;  // by grain id
   std::vector<Vec<D>> velocity_;
+  std::vector<double> mass_;
   std::vector<double> time_;
   std::vector<double> azimuth_;
 };

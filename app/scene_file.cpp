@@ -351,6 +351,19 @@ const std::vector<Key>& keys() {
                          "grains farther than this from the jet axis count as scattered (psi0, "
                          "v2); 0: max(1.5 R_tar, jet outer radius + 1), within 0.9 region.radius",
                          FIELD(analysis.scatter_radius), kNonNegative));
+    k.push_back(choice_key<Psi0Reading>(
+        "analysis.psi0",
+        "what psi0 reports: departure, the polar angle of the scattered grains' mean direction; "
+        "momentum, 1 - cos psi0 = the target's impulse over the incident momentum [4.3] (both "
+        "are stored as psi0_departure and psi0_momentum)",
+        FIELD(analysis.psi0),
+        {{"departure", Psi0Reading::kDeparture}, {"momentum", Psi0Reading::kMomentum}}));
+    k.push_back(choice_key<WallContacts>(
+        "analysis.stress_wall_contacts",
+        "whether the fields' contact stress (and P, mu*, I, eta, sigma_Y) counts the transfers "
+        "with target grains or the plate (stress_contact_wall is stored either way)",
+        FIELD(analysis.stress_wall_contacts),
+        {{"include", WallContacts::kInclude}, {"exclude", WallContacts::kExclude}}));
     return k;
   }();
   return table;

@@ -27,6 +27,13 @@ enum class JetShape { kCylinder, kRectangle };
 // target (no grains; its face is where their top surface would be, core/plate_face.hpp) these
 // are the plane d/2 behind the face and the face itself.
 enum class HeightOrigin { kWallCentres, kWallSurface };
+// How psi0 is measured (spec §6 and [4.3]; the study does not say): the polar angle of the mean
+// departure direction of the scattered grains, or the angle whose 1 - cos psi0 is the target's
+// impulse over the incident momentum, sum m (v_out + u0 e_in) . e_jet / sum m u0.
+enum class Psi0Reading { kDeparture, kMomentum };
+// Whether the contact stress of the fields counts the transfers between flowing grains and
+// target grains (the study sums "over the particles located at r" and leaves this open).
+enum class WallContacts { kInclude, kExclude };
 // Restitution laws of the event-driven backend [spec §8].
 enum class RestitutionLaw { kConstant, kVelocityDependent, kTcModel };
 // The soft DEM's contact law: the study's linear spring-dashpot (spec §2) or Hertz-Mindlin with
@@ -147,6 +154,8 @@ struct AnalysisSpec {
   HeightOrigin height_origin = HeightOrigin::kWallCentres;  // h = 0 of the layers
   double scatter_radius =
       0.0;  // where grains count as scattered; 0: from the target (run_analysis)
+  Psi0Reading psi0 = Psi0Reading::kDeparture;                // what global psi0 reports
+  WallContacts stress_wall_contacts = WallContacts::kInclude;  // in the fields' contact stress
 };
 
 // The unit attributes of the H5MD output: MDAnalysis reads only molecular unit names, so

@@ -344,6 +344,28 @@ TEST(FieldAccumulator, WallPartIsTheTransfersWithATargetGrain) {
   expect_tensor(f, 6, "stress_contact_wall", Eigen::Matrix2d::Zero(), 0.0);
 }
 
+// analysis.stress_wall_contacts = exclude: the same two transfers, and the contact stress keeps
+// the flowing-flowing one only; the wall part is still reported, and P follows the choice.
+TEST(FieldAccumulator, ExcludingWallContactsLeavesTheFlowingGrainsOwnStress) {
+  FieldAccumulator<2> acc(jet2d_spec());
+  acc.sample(grains({{0, GrainKind::kFree}, {7, GrainKind::kWall}, {12, GrainKind::kFree}}), {},
+             0.0);
+  const Vec<2> impulse(0.5, -0.2);
+  const std::vector<PairImpulse<2>> transfers{{0, 7, {3.0, 2.0}, {2.2, 2.6}, impulse},
+                                              {12, 0, {3.0, 8.0}, {2.2, 8.6}, impulse}};
+  acc.sample(grains({{0, GrainKind::kFree}, {12, GrainKind::kFree}}), transfers, 0.5);
+  FieldOptions without;
+  without.wall_contacts = false;
+  const Table all = acc.fields({}), own = acc.fields(without);
+  Eigen::Matrix2d expected;
+  expected << 0.5 * 0.8, 0.5 * -0.6, -0.2 * 0.8, -0.2 * -0.6;
+  expect_tensor(own, 5, "stress_contact", Eigen::Matrix2d::Zero(), 0.0);
+  expect_tensor(own, 5, "stress_contact_wall", expected / (kBin5Volume * 0.5), 1e-15);
+  expect_tensor(own, 6, "stress_contact", expected / (kBin5Volume * 0.5), 1e-15);
+  EXPECT_NEAR(all.at(5, "P") - own.at(5, "P"), expected.trace() / 2 / (kBin5Volume * 0.5), 1e-15);
+  EXPECT_EQ(all.at(6, "P"), own.at(6, "P"));
+}
+
 // The normal part of an impulse is (J.n) n r^T with n along the line of centres; the rest is
 // tangential. J = (1, 0.5), r = (0.45, -0.6), |r| = 0.75, n = (0.6, -0.8): J.n = 0.2.
 TEST(FieldAccumulator, NormalPartIsTheImpulseAlongTheLineOfCentres) {

@@ -154,6 +154,33 @@ TEST(RunAnalysis, SamplesEveryIntervalAndAveragesTransfersOverTheWindowOnly) {
   EXPECT_NEAR(r.fields.at(5, "stress_contact.yy"), 2 * 0.5 / (6.6 * 5.0), 1e-15);
 }
 
+// analysis.psi0 chooses the reading that global psi0 and psi0_window report; both readings are
+// stored whatever it says. Beyond the scatter radius one grain leaves along the wall at u0 = 2,
+// one straight back towards the source at u0/4.
+TEST(RunAnalysis, Psi0ReportsTheChosenReadingAndStoresBoth) {
+  Scene s = jet_scene(2, 66.0, 0.0);
+  s.jet.speed = 2.0;
+  for (const Psi0Reading reading : {Psi0Reading::kDeparture, Psi0Reading::kMomentum}) {
+    s.analysis.psi0 = reading;
+    AnalysisConfig c = AnalysisConfig::for_scene(s);
+    c.window_start = 0.0;
+    c.window_end = 1.0;
+    RunAnalysis<2> run(c);
+    Particles<2> p;
+    p.add(0, GrainKind::kFree, {1.0, 2.0 * c.scatter_radius}, {0.0, 2.0}, 0.5, 1.0);
+    p.add(1, GrainKind::kFree, {1.0, -2.0 * c.scatter_radius}, {0.5, 0.0}, 0.5, 1.0);
+    run.sample(0.5, p, {});
+    const Table g = run.finish().global;
+    // Unit vectors (along wall, forward): (1, 0) and (0, -1); mean (0.5, -0.5).
+    EXPECT_NEAR(g.at(0, "psi0_departure"), std::atan2(0.5, -0.5), 1e-12);
+    // Forward momentum 0 + (-0.5) over 2 grains x u0 = 2: cos psi0 = -0.125.
+    EXPECT_NEAR(g.at(0, "psi0_momentum"), std::acos(-0.125), 1e-12);
+    const char* chosen = reading == Psi0Reading::kMomentum ? "psi0_momentum" : "psi0_departure";
+    EXPECT_EQ(g.at(0, "psi0"), g.at(0, chosen));
+    EXPECT_EQ(g.at(0, "psi0_window"), g.at(0, chosen));
+  }
+}
+
 TEST(RunAnalysis, ScheduleStopsAtTheWindowStart) {
   AnalysisConfig c = small_2d_config();
   c.window_start = 0.7;

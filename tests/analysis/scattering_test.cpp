@@ -43,6 +43,29 @@ TEST(Scattering, Psi0OfASymmetricSpreadIsItsCentre) {
   EXPECT_TRUE(std::isnan(scattering_angle<2>({})));
 }
 
+// [4.3] read as a momentum balance: 1 - cos psi0 = impulse / incident momentum. Grains leaving at
+// the jet speed u0 in one direction: the departure angle itself. Slower grains at the same angle
+// took a smaller share of their momentum back: cos psi0 = (|v|/u0) cos psi.
+TEST(Scattering, MomentumReadingOfPsi0) {
+  const std::vector<double> equal(4, 1.0);
+  for (double psi : {0.4, kPi / 2, 2.2}) {
+    std::vector<Vec<3>> v;
+    for (int k = 0; k < 4; ++k) v.push_back(outgoing(psi, 0.5 * k, 1.5));  // u0 = 1.5
+    EXPECT_NEAR(momentum_scattering_angle<3>(v, equal, 1.5), psi, 1e-12);
+    for (Vec<3>& w : v) w *= 0.5;  // half the speed
+    EXPECT_NEAR(momentum_scattering_angle<3>(v, equal, 1.5), std::acos(0.5 * std::cos(psi)),
+                1e-12);
+  }
+  // Weighted by mass: 1 x straight back (cos = -1) and 3 x along the wall (cos = 0): -1/4.
+  const std::vector<Vec<2>> sheets{{1.0, 0.0}, {0.0, 1.0}};
+  EXPECT_NEAR(momentum_scattering_angle<2>(sheets, std::vector<double>{1.0, 3.0}, 1.0),
+              std::acos(-0.25), 1e-12);
+  // Grains that left faster than they came have no angle; no grains neither.
+  EXPECT_TRUE(std::isnan(momentum_scattering_angle<2>(std::vector<Vec<2>>{{2.0, 0.0}},
+                                                      std::vector<double>{1.0}, 1.0)));
+  EXPECT_TRUE(std::isnan(momentum_scattering_angle<2>({}, {}, 1.0)));
+}
+
 // Azimuths drawn from dN/dphi ~ 1 + 2 v2 cos 2phi by rejection: <cos 2phi> estimates v2 with
 // standard error sqrt(1/(2N)) = 0.005; tolerance 5 of those.
 TEST(Scattering, V2OfAnAnisotropicAzimuthalDistribution) {
@@ -70,6 +93,9 @@ TEST(Scattering, MeasurementRecordsEachScatteredGrainOnce) {
   m.observe(p, 2.0);
   ASSERT_EQ(m.count(), 2u);
   EXPECT_NEAR(m.psi0(), 1.1, 1e-12);
+  EXPECT_NEAR(m.psi0_momentum(), std::acos((std::cos(1.2) + std::cos(1.0)) / 2), 1e-12);
+  EXPECT_NEAR(m.psi0_momentum_between(0.5, 1.5), m.psi0_momentum(), 0.0);
+  EXPECT_TRUE(std::isnan(m.psi0_momentum_between(1.5, 3.0)));  // nobody first seen then
   EXPECT_NEAR(m.v2(), 1.0, 1e-12);  // both on the reference axis: cos 2phi = 1
   const std::vector<double> dn = m.azimuthal_distribution(4);
   double mean = 0.0;

@@ -110,6 +110,25 @@ void expect_refused(const std::vector<std::string>& overrides, const std::string
   }
 }
 
+// The readings the study leaves open (spec §6, [4.3]): psi0 from the departure directions or the
+// momentum balance, the fields' contact stress with or without the target's contacts. Defaults
+// keep the measurement as it was; both survive the resolved INI; anything else is refused.
+TEST(SceneFile, AnalysisReadingsParseRoundTripAndRefuseOthers) {
+  const Scene plain = load_scene(kScenes + "/jet3d.ini", {});
+  EXPECT_EQ(plain.analysis.psi0, Psi0Reading::kDeparture);
+  EXPECT_EQ(plain.analysis.stress_wall_contacts, WallContacts::kInclude);
+  const Scene s = load_scene(kScenes + "/jet3d.ini", {"analysis.psi0=momentum",
+                                                      "analysis.stress_wall_contacts=exclude"});
+  const std::string ini = scene_to_ini(s);
+  EXPECT_NE(ini.find("psi0 = momentum"), std::string::npos);
+  EXPECT_NE(ini.find("stress_wall_contacts = exclude"), std::string::npos);
+  EXPECT_EQ(reparsed(ini).analysis.psi0, Psi0Reading::kMomentum);
+  EXPECT_EQ(reparsed(ini).analysis.stress_wall_contacts, WallContacts::kExclude);
+  expect_refused({"analysis.psi0=force"}, "analysis.psi0", "departure | momentum");
+  expect_refused({"analysis.stress_wall_contacts=no"}, "analysis.stress_wall_contacts",
+                 "include | exclude");
+}
+
 TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"contact.restitution=0"}, "contact.restitution", "(0, 1]");
   expect_refused({"contact.restitution=1.5"}, "contact.restitution", "(0, 1]");
