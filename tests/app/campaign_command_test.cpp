@@ -183,6 +183,28 @@ TEST_F(CampaignCommand, AChangedKeyRerunsOnlyItsGroup) {
   EXPECT_EQ(fs::last_write_time(out / "jet2d" / "friction-0.seed1.h5"), stamp);
 }
 
+// A run recorded under the scene hash of an older granjet (one that knew fewer keys) whose file
+// holds this very run: found complete, its manifest entry keeps its history (times, host) and
+// takes the current hash.
+TEST_F(CampaignCommand, AnEntryUnderAnOlderHashKeepsItsHistory) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --out " + out.string()), 0);
+  nlohmann::json m = manifest(out);
+  const std::string name = "jet2d/friction-0.seed1";
+  const std::string current = m["runs"][name]["hash"];
+  m["runs"][name]["hash"] = "0123456789abcdef";
+  m["runs"][name]["wall_seconds"] = 123.5;
+  m["runs"][name]["host"] = "elsewhere";
+  std::ofstream(out / "manifest.json") << m.dump(1);
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --out " + out.string()), 0) << err_;
+  m = manifest(out);
+  EXPECT_EQ(m["invocations"][1]["found_complete"], 10);
+  EXPECT_EQ(m["invocations"][1]["executed"], 0);
+  EXPECT_EQ(m["runs"][name]["hash"], current);
+  EXPECT_EQ(m["runs"][name]["wall_seconds"], 123.5);
+  EXPECT_EQ(m["runs"][name]["host"], "elsewhere");
+}
+
 TEST_F(CampaignCommand, MalformedCampaignExitsTwoNamingGroupAndKeyAndWritesNothing) {
   const fs::path out = dir_ / "out";
   const fs::path file = smoke_copy("contact.friction = 0, 0.2", "contact.friction = 0, -0.2");
