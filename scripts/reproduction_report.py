@@ -41,8 +41,10 @@ import campaign_data as cd  # noqa: E402
 import plot_analysis as pa  # noqa: E402
 from campaign_data import NOT_MEASURED, Measured  # noqa: E402
 from report_causes import section_causes  # noqa: E402
+from report_readings import section_readings  # noqa: E402
 from report_document import Figures, Section, Table, format_measured, format_number, \
     read_text, verdict_line  # noqa: E402
+from report_published import section_published  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 INNER_RING = 0.1  # F5.3: sigma_rz/sigma_zz at r/R_tar = 0.1
@@ -51,10 +53,14 @@ STUDY_CONTACT_TIME = {0.0: 0.1, 0.2: 0.1, 0.4: 0.05, 1.0: 0.01}
 # Spec §2's table of (e, t_c) -> (k_n, eta_n), the values T4.1 reproduces.
 SPEC_T4_1 = {(0.75, 0.1): (4.98e2, 2.88), (0.8, 0.1): (4.96e2, 2.23), (0.9, 0.1): (4.94e2, 1.05),
              (0.99, 0.1): (4.93e2, 0.101), (0.75, 0.05): (1.99e3, 5.75)}
-NOT_IN_SPEC = "the study's value is not in the spec"
+# Where the study's own numbers are: the Published section sets each beside granjet's.
+PUBLISHED = "the study's published numbers stand beside these in section Published"
+QUALITATIVE = ("the study gives a figure and a sentence, not a number (section Published "
+               "states the criterion it is held to)")
+NOT_PUBLISHED = "the study's numbers for this are not among its published values"
 # Sections that study the open choices and causes rather than one of the study's results: not in
 # the closing list of verdicts.
-ANALYSES = ("Sensitivity", "Causes")
+ANALYSES = ("Sensitivity", "Causes", "Readings")
 COLOURS = ("C0", "C1", "C2", "C3", "C4", "C5")
 
 
@@ -372,7 +378,8 @@ def section_f4_2(ctx):
     s.add_table(fits)
     s.results["fit"] = {f"e{r['e']:g}": {k: v for k, v in r.items() if k != "e"}
                         for r in fits.json()}
-    s.compare(f"the fitted C0, C1, C2 are above; {NOT_IN_SPEC} (spec §6 gives the law only).")
+    s.compare(f"the fitted C0, C1, C2 are above; {PUBLISHED} (and section Readings, psi0 by "
+              "the momentum balance).")
     return s
 
 
@@ -408,7 +415,7 @@ def section_f4_3(ctx):
                  "azimuthal distributions (right)")
     s.add_table(table)
     s.results["v2"] = {f"l{r['l']:g}": r["v2"] for r in table.json()}
-    s.compare(f"{NOT_IN_SPEC} for v2(epsilon); compare the trend with the study's figure.")
+    s.compare(f"for v2(epsilon) {QUALITATIVE}.")
     return s
 
 
@@ -484,7 +491,7 @@ def section_f5_3(ctx):
         f"{friction} {format_measured(m)}"
         for friction, m in sorted(headline.get("ratio_rz_zz_r0.1", {}).items())) +
         ". The study has frictional below frictionless; "
-        f"{NOT_IN_SPEC} for the ratio itself.")
+        f"{PUBLISHED}.")
     return s
 
 
@@ -551,7 +558,7 @@ def section_f5_4(ctx):
     s.add_figure(ctx.figures.save(fig, "F5_4_velocity"), "v_r and sqrt(T_g/m) against "
                  "r/R_tar (blue frictionless, orange frictional; marker: phi~0)")
     s.add_table(table)
-    s.compare(f"{NOT_IN_SPEC}; compare the shapes with the study's figure.")
+    s.compare(f"{QUALITATIVE}.")
     return s
 
 
@@ -704,7 +711,7 @@ def section_t5_1(ctx):
         s.add_figure(ctx.figures.save(fig, "T5_1_vdf"), "scaled velocity distributions at "
                      "phi~0 = 0.9 (each bin's own scaling), unit Gaussian for reference")
     s.add_table(table)
-    s.compare(f"{NOT_IN_SPEC} (T5.1's numbers); the two readings of the scaling are both in "
+    s.compare(f"{NOT_PUBLISHED}; the two readings of the scaling are both in "
               "the table.")
     return s
 
@@ -777,7 +784,7 @@ def section_f5_7(ctx):
                  "intercept (dotted)")
     s.add_table(pooled)
     s.add_table(per_point)
-    s.compare(f"{NOT_IN_SPEC} for a; the study finds mu* through the origin, so the intercept "
+    s.compare(f"{PUBLISHED}; the study finds mu* through the origin, so the intercept "
               "mu0 should be zero within its error.")
     return s
 
@@ -894,7 +901,7 @@ def section_f6_3(ctx):
                                   f"[{p.group.name}] ({p.param('analysis.height_origin')}): "
                                   "ensemble mean ± std over seeds per bin and layer."))
         s.results.setdefault("phi_max", {})[p.group.name] = phi_max(p)
-    s.compare(f"{NOT_IN_SPEC}; the dead zone shows as the low T_g and |v_x| of layer (a) "
+    s.compare(f"{QUALITATIVE}; the dead zone shows as the low T_g and |v_x| of layer (a) "
               "near y = 0.")
     return s
 
@@ -946,7 +953,7 @@ def section_f6_4(ctx):
                  "target, layers (a) and (b)")
     s.add_table(profile_table("stress", p, ("stress.xx", "stress.yy", "stress.xy"),
                               f"[{p.group.name}]: ensemble mean ± std over seeds."))
-    s.compare(NOT_IN_SPEC + ".")
+    s.compare(NOT_PUBLISHED + ".")
     return s
 
 
@@ -1026,7 +1033,7 @@ def section_f6_5(ctx):
                   for name in ("phi_T", "alpha_T", "phi_s", "alpha_s")}
         s.results.update({name: m.json() for name, m in fitted.items()})
         s.compare(f"[{reference.group.name}] phi_T {format_measured(fitted['phi_T'])}, phi_s "
-                  f"{format_measured(fitted['phi_s'])}; {NOT_IN_SPEC}.")
+                  f"{format_measured(fitted['phi_s'])}; {PUBLISHED}.")
     return s
 
 
@@ -1048,7 +1055,7 @@ def section_f6_7(ctx):
         for law in ("6.9", "6.10"):
             for name in FITS_2D[law]:
                 s.results[name] = fit_over_seeds(points[0], law, name).json()
-    s.compare(NOT_IN_SPEC + ".")
+    s.compare(PUBLISHED + ".")
     return s
 
 
@@ -1095,7 +1102,7 @@ def section_friction_fits(ctx, result_id, title, reference_group, stem, dispersi
     for p in found:
         s.results.setdefault("by_mu_p", {})[f"{p.number('contact.friction'):g}"] = {
             n: fit_over_seeds(p, law, n).json() for law, n in names}
-    s.compare(NOT_IN_SPEC + ".")
+    s.compare(QUALITATIVE + ".")
     return s, found
 
 
@@ -1449,7 +1456,7 @@ def section_sensitivity(ctx):
 SECTIONS = [section_t4_1, section_f4_2, section_f4_3, section_f5_3, section_f5_4, section_f5_5,
             section_f5_6, section_t5_1, section_f5_7, section_t5_2, section_f5_9, section_f6_3,
             section_f6_4, section_f6_5, section_f6_7, section_f6_11, section_f6_16, section_fe1,
-            section_hc, section_sensitivity, section_causes]
+            section_hc, section_sensitivity, section_causes, section_readings]
 
 
 class Context:
@@ -1525,15 +1532,17 @@ def write_report(campaign, docs_dir, text_dir):
     context = Context(campaign, figures, text_dir)
     top, meta = header(campaign)
     sections = [build(context) for build in SECTIONS]
+    published = section_published(context, sections)  # reads the other sections' results
     intro, _ = read_text(text_dir, "intro")
     verdicts = "\n".join(f"- **{s.id}**: {verdict_line(s.after)}" for s in sections
                          if s.id not in ANALYSES)
     document = "\n\n".join(["# Reproduction of the study", intro, "## The campaign", top,
-                            *(s.markdown() for s in sections), "## Verdicts", verdicts]) + "\n"
+                            *(s.markdown() for s in sections), published.markdown(),
+                            "## Verdicts", verdicts]) + "\n"
     with open(os.path.join(docs_dir, "reproduction.md"), "w", encoding="utf-8") as f:
         f.write(document)
     figures.remove_stale()
-    results = {"meta": meta, **{s.id: s.results for s in sections}}
+    results = {"meta": meta, **{s.id: s.results for s in (*sections, published)}}
     with open(os.path.join(figures.directory, "results.json"), "w", encoding="utf-8") as f:
         json.dump(results, f, indent=1, sort_keys=True, allow_nan=False)
         f.write("\n")

@@ -24,6 +24,7 @@ sys.dont_write_bytecode = True  # no __pycache__ in scripts/
 GRANJET = None  # the binary under test: script_tests.main_with_granjet sets it from --granjet
 sys.path.insert(0, os.path.dirname(SCRIPT))
 import campaign_data  # noqa: E402
+import report_published  # noqa: E402
 import reproduction_report  # noqa: E402
 import script_tests  # noqa: E402
 
@@ -126,7 +127,8 @@ def test_figures_are_small_pngs_and_all_linked(tmp):
 
 def test_results_json_holds_the_numbers_by_id(tmp):
     _, _, results = default_report()
-    assert set(results) == set(RESULT_IDS) | {"meta", "Sensitivity", "Causes"}, sorted(results)
+    assert set(results) == set(RESULT_IDS) | {"meta", "Sensitivity", "Causes", "Readings",
+                                              "Published"}, sorted(results)
     assert results["meta"]["campaign"] == "smoke" and not results["meta"]["quick"]
     ratio = results["F5.3"]["ratio_rz_zz_r0.1"]["frictional"]  # smoke's 3D jet: mu_p = 0.2
     assert len(ratio) == 2 and math.isfinite(ratio[0]) and ratio[1] >= 0, ratio
@@ -269,6 +271,31 @@ def test_formulas_match_the_spec(tmp):
     a, _ = r.line_through_origin([1, 2, 3], [2, 4, 6.0])
     (b, slope), _ = r.straight_line([1, 2, 3, 4], [1.5, 2.5, 3.5, 4.5])
     assert abs(a - 2) < 1e-12 and abs(b - 0.5) < 1e-12 and abs(slope - 1) < 1e-12
+
+
+def test_published_verdicts_follow_the_stated_rule(tmp):
+    verdict = report_published.numeric_verdict
+    m = campaign_data.Measured
+    assert verdict(m(1.0, 0.3), 1.2, 0.1) == "within error bars"  # 0.2 <= sqrt(0.1)
+    assert verdict(m(1.0, math.nan), 1.2, None) == "within 2x"
+    assert verdict(m(3.0, 0.1), 1.0, 0.1) == "off by a factor 3"
+    assert verdict(m(-1.0, 0.1), 1.0, 0.1) == "opposite sign"
+    assert verdict(m(math.nan, 0.1), 1.0, 0.1) == "not measured"
+    # Every published number has a row, and the count line adds up.
+    _, markdown, results = default_report()
+    rows = results["Published"]["rows"]
+    assert {r["id"] for r in rows} >= {"F4.2", "F5.3", "F5.7", "T5.2", "F6.5", "F6.7", "ch. 6"}
+    text = section(markdown, "Published")
+    assert "numeric rows within the study's error bars" in text, text[:400]
+
+
+def test_readings_fe1_printed_parameters_under_3_4_and_3_5(tmp):
+    _, _, results = default_report()
+    printed = results["Readings"]["fe1_printed"]
+    # Back through [3.4]-[3.5]: the (e, t_c) found give the printed (k_n, eta_n) again.
+    k_n, eta_n = reproduction_report.contact_parameters_3_4_3_5(printed["e"], printed["t_c"])
+    assert abs(k_n - 796.0) < 1e-9 * 796 and abs(eta_n - 10.15) < 1e-9 * 10.15, (k_n, eta_n)
+    assert 0.08 < printed["t_c"] < 0.083 and 0.43 < printed["e"] < 0.45, printed
 
 
 def cleanup():
