@@ -174,8 +174,8 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
                  : Mat::Zero();
     // [C.31]-[C.33]: no transfer time means no contact information (e.g. stored frames only).
     const double contact_norm = transfer_time_ > 0.0 ? 1.0 / (volume * transfer_time_) : kNaN;
-    const Mat contact = (options.wall_contacts ? s.contact : Mat(s.contact - s.contact_wall)) *
-                        contact_norm;
+    const Mat contact =
+        (options.wall_contacts ? s.contact : Mat(s.contact - s.contact_wall)) * contact_norm;
     const Mat stress = kinetic + contact;
     const double t_g = fluct.trace() / (D * s.count);  // T_g = sum m u^2 / (D N)
     const double pressure = stress.trace() / D;        // P = tr(sigma)/D

@@ -152,12 +152,14 @@ RunResult RunAnalysis<D>::finish() const {
   const double slack = 0.5 * config_.sample_interval;  // as in_window
   const double t0 = config_.window_start - slack, t1 = config_.window_end + slack;
   const bool momentum = config_.psi0_reading == Psi0Reading::kMomentum;
+  const double departure_window = scattering_.psi0_between(t0, t1);
+  const double momentum_window = scattering_.psi0_momentum_between(t0, t1);
   r.global.set("psi0_departure", 0, scattering_.psi0());
   r.global.set("psi0_momentum", 0, scattering_.psi0_momentum());
+  r.global.set("psi0_departure_window", 0, departure_window);
+  r.global.set("psi0_momentum_window", 0, momentum_window);
   r.global.set("psi0", 0, momentum ? scattering_.psi0_momentum() : scattering_.psi0());
-  r.global.set("psi0_window", 0,
-               momentum ? scattering_.psi0_momentum_between(t0, t1)
-                        : scattering_.psi0_between(t0, t1));
+  r.global.set("psi0_window", 0, momentum ? momentum_window : departure_window);
   if constexpr (D == 3) r.global.set("v2", 0, scattering_.v2());
   if (!std::isnan(config_.free_streamline_psi0))
     r.global.set("psi0_free_streamline", 0, config_.free_streamline_psi0);

@@ -70,7 +70,8 @@ struct RunResult {
   Table global;   // one row: flatness_bin.a and flatness_region.a (T5.1: scaled by each bin's
                   // T_a, or by one T_a for the region), psi0, psi0_window (of the grains
                   // scattered within the time window; both by analysis.psi0's reading),
-                  // psi0_departure and psi0_momentum (whole run), v2 (3D), scattered, samples,
+                  // psi0_departure and psi0_momentum (whole run) and their _window forms,
+                  // v2 (3D), scattered, samples,
                   // transfer_time, window_start, window_end; psi0_free_streamline (2D plate)
   Table vdf;      // per histogram interval: "c" (its centre), "density.a" (each bin's scaling)
   Table azimuth;  // per interval of [0, 2 pi): "phi" (its centre), "dN_dphi" over its mean (3D)

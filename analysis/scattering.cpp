@@ -37,8 +37,8 @@ double scattering_angle(std::span<const Vec<D>> velocities) {
 }
 
 template <int D>
-double momentum_scattering_angle(std::span<const Vec<D>> velocities,
-                                 std::span<const double> masses, double incident_speed) {
+double momentum_scattering_angle(std::span<const Vec<D>> velocities, std::span<const double> masses,
+                                 double incident_speed) {
   double forward = 0.0, mass = 0.0;
   for (std::size_t k = 0; k < velocities.size(); ++k) {
     forward += masses[k] * -velocities[k][kJetAxis<D>];  // the jet travels along -e_jet

@@ -28,8 +28,8 @@ double scattering_angle(std::span<const Vec<D>> velocities);
 // it is the departure angle; slower grains at the same angle give a larger psi0. NaN for no
 // grains or a cosine beyond [-1, 1] (grains that left faster than they came).
 template <int D>
-double momentum_scattering_angle(std::span<const Vec<D>> velocities,
-                                 std::span<const double> masses, double incident_speed);
+double momentum_scattering_angle(std::span<const Vec<D>> velocities, std::span<const double> masses,
+                                 double incident_speed);
 
 // v2 = <cos 2 phi>: with dN/dphi = v0 (1 + 2 v2 cos 2phi + ...), the cos 2phi Fourier coefficient
 // over the mean v0 (the convention of elliptic flow). NaN for no angles.

@@ -139,9 +139,8 @@ class Coordinator {
       // very run: the same hash, or a complete file that holds this run under a scene hash
       // written before keys were added (stored_state resolves it anew); its paths follow DIR,
       // which may have moved.
-      const bool known = entry.is_object() &&
-                         (entry.value("hash", std::string()) == run.hash ||
-                          outcomes_[r].state == RunState::kComplete);
+      const bool known = entry.is_object() && (entry.value("hash", std::string()) == run.hash ||
+                                               outcomes_[r].state == RunState::kComplete);
       if (!known) entry = nlohmann::json::object();
       entry.update(describe(run));
       if (outcomes_[r].state == RunState::kMissing) {

@@ -269,11 +269,13 @@ const std::vector<Key>& keys() {
     k.push_back(choice_key<WallLattice>(
         "wall.lattice", "3D target grains' lattice (the 2D target is a row)", FIELD(wall.lattice),
         {{"hexagonal", WallLattice::kHexagonal}, {"square", WallLattice::kSquare}}));
-    k.push_back(real_key("wall.spacing", "centre distance of neighbouring target grains in d",
-                         FIELD(wall.spacing), {1.0, false, kInf, false}));
+    k.push_back(real_key("wall.spacing",
+                         "centre distance of neighbouring target grains in d; below 1 they "
+                         "overlap into a smoother layer (soft DEM)",
+                         FIELD(wall.spacing), {0.5, false, kInf, false}));
     k.push_back(real_key("wall.jitter",
                          "random layer: largest in-plane shift of a target grain from its site, "
-                         "in d, at most (wall.spacing - 1)/2",
+                         "in d, at most (wall.spacing - 1)/2 (0 below spacing 1)",
                          FIELD(wall.jitter), kNonNegative));
     k.push_back(real_key("wall.spring", "tether spring k_w in m u0^2/d^2", FIELD(wall.spring),
                          kNonNegative));
@@ -442,16 +444,17 @@ void validate_gas(const Scene& s) {
                                               format_number(s.run.t_end));
 }
 
-// The target grains must not overlap, and the tethers join lattice neighbours only: grains
-// within spacing + 2 jitter of each other, while next-nearest sites, shifted towards each other,
-// stay beyond that.
+// The jitter must not make target grains overlap (or, below spacing 1, overlap more than their
+// lattice does), and the tethers join lattice neighbours only: grains within spacing + 2 jitter
+// of each other, while next-nearest sites, shifted towards each other, stay beyond that.
 void validate_wall(const Scene& s) {
   const WallSpec& w = s.wall;
-  if (w.jitter > 0.5 * (w.spacing - 1.0) + 1e-12)
+  const double room = std::max(0.0, 0.5 * (w.spacing - 1.0));
+  if (w.jitter > room + 1e-12)
     throw InputError("wall.jitter", format_number(w.jitter) +
                                         " would let target grains overlap: "
                                         "at most (wall.spacing - 1)/2 = " +
-                                        format_number(0.5 * (w.spacing - 1.0)));
+                                        format_number(room) + " (0 below spacing 1)");
   const bool square = w.lattice == WallLattice::kSquare;
   if (square && s.dimension == 2)
     throw InputError("wall.lattice",

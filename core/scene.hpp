@@ -154,7 +154,7 @@ struct AnalysisSpec {
   HeightOrigin height_origin = HeightOrigin::kWallCentres;  // h = 0 of the layers
   double scatter_radius =
       0.0;  // where grains count as scattered; 0: from the target (run_analysis)
-  Psi0Reading psi0 = Psi0Reading::kDeparture;                // what global psi0 reports
+  Psi0Reading psi0 = Psi0Reading::kDeparture;                  // what global psi0 reports
   WallContacts stress_wall_contacts = WallContacts::kInclude;  // in the fields' contact stress
 };
 

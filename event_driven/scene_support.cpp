@@ -17,6 +17,11 @@ SceneSupport scene_support(const Scene& scene) {
     support.unsupported.push_back(
         {"output.fields",
          "omega: the grains of this run do not turn (smooth hard spheres); drop it"});
+  if (scene.has_wall() && !scene.has_plate() && scene.wall.spacing < 1.0)
+    support.unsupported.push_back(
+        {"wall.spacing",
+         "below 1 the target grains overlap, which hard grains cannot (use "
+         "--backend soft_dem, or wall.spacing >= 1)"});
   if (scene.has_tethered_wall()) {
     hard.wall.kind = WallKind::kFixed;
     support.adaptations.push_back({"wall.kind", "tethered", "fixed",

@@ -178,6 +178,8 @@ TEST(RunAnalysis, Psi0ReportsTheChosenReadingAndStoresBoth) {
     const char* chosen = reading == Psi0Reading::kMomentum ? "psi0_momentum" : "psi0_departure";
     EXPECT_EQ(g.at(0, "psi0"), g.at(0, chosen));
     EXPECT_EQ(g.at(0, "psi0_window"), g.at(0, chosen));
+    EXPECT_EQ(g.at(0, "psi0_departure_window"), g.at(0, "psi0_departure"));  // seen in window
+    EXPECT_EQ(g.at(0, "psi0_momentum_window"), g.at(0, "psi0_momentum"));
   }
 }
 

@@ -53,8 +53,7 @@ TEST(Scattering, MomentumReadingOfPsi0) {
     for (int k = 0; k < 4; ++k) v.push_back(outgoing(psi, 0.5 * k, 1.5));  // u0 = 1.5
     EXPECT_NEAR(momentum_scattering_angle<3>(v, equal, 1.5), psi, 1e-12);
     for (Vec<3>& w : v) w *= 0.5;  // half the speed
-    EXPECT_NEAR(momentum_scattering_angle<3>(v, equal, 1.5), std::acos(0.5 * std::cos(psi)),
-                1e-12);
+    EXPECT_NEAR(momentum_scattering_angle<3>(v, equal, 1.5), std::acos(0.5 * std::cos(psi)), 1e-12);
   }
   // Weighted by mass: 1 x straight back (cos = -1) and 3 x along the wall (cos = 0): -1/4.
   const std::vector<Vec<2>> sheets{{1.0, 0.0}, {0.0, 1.0}};

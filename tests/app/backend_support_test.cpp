@@ -100,6 +100,15 @@ TEST(BackendSupport, RefusalsNameTheKeyAndSayWhy) {
                 .first,
             "");
   EXPECT_EQ(refusal("gpu", shipped("jet3d.ini")).first, "--backend");
+  // Overlapping target grains (wall.spacing < 1): soft grains only; a plate has no grains.
+  const auto [smooth, smooth_why] =
+      refusal("event_driven", shipped("jet3d.ini", {"wall.spacing=0.75"}));
+  EXPECT_EQ(smooth, "wall.spacing");
+  EXPECT_NE(smooth_why.find("hard grains cannot"), std::string::npos) << smooth_why;
+  EXPECT_EQ(refusal("soft_dem", shipped("jet3d.ini", {"wall.spacing=0.75"})).first, "");
+  EXPECT_EQ(
+      refusal("event_driven", shipped("jet3d.ini", {"wall.spacing=0.75", "wall.kind=plate"})).first,
+      "");
 }
 
 TEST(BackendSupport, BackendsDeclareWhatTheyCount) {

@@ -117,8 +117,8 @@ TEST(SceneFile, AnalysisReadingsParseRoundTripAndRefuseOthers) {
   const Scene plain = load_scene(kScenes + "/jet3d.ini", {});
   EXPECT_EQ(plain.analysis.psi0, Psi0Reading::kDeparture);
   EXPECT_EQ(plain.analysis.stress_wall_contacts, WallContacts::kInclude);
-  const Scene s = load_scene(kScenes + "/jet3d.ini", {"analysis.psi0=momentum",
-                                                      "analysis.stress_wall_contacts=exclude"});
+  const Scene s = load_scene(kScenes + "/jet3d.ini",
+                             {"analysis.psi0=momentum", "analysis.stress_wall_contacts=exclude"});
   const std::string ini = scene_to_ini(s);
   EXPECT_NE(ini.find("psi0 = momentum"), std::string::npos);
   EXPECT_NE(ini.find("stress_wall_contacts = exclude"), std::string::npos);
@@ -159,10 +159,13 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"gas.grains=9223372036854775808"}, "gas.grains", "in [2, 1000000000]");
   expect_refused({"gas.grains=9223372036854775807"}, "gas.grains", "in [2, 1000000000]");
   expect_refused({"run.skin=1e12"}, "run.skin", "(0, 5]");
-  // Target lattices (spec §4 leaves them open): no overlapping or ambiguous tether neighbours.
+  // Target lattices (spec §4 leaves them open): no jitter into overlaps, no ambiguous tether
+  // neighbours; a spacing below 1 overlaps the grains into a smoother layer, down to 0.5.
   expect_refused({"contact.clamp_normal=yes"}, "contact.clamp_normal", "false | true");
   expect_refused({"wall.lattice=random"}, "wall.lattice", "hexagonal | square");
-  expect_refused({"wall.spacing=0.9"}, "wall.spacing", ">= 1");
+  expect_refused({"wall.spacing=0.4"}, "wall.spacing", ">= 0.5");
+  EXPECT_EQ(load_scene(kScenes + "/jet3d.ini", {"wall.spacing=0.75"}).wall.spacing, 0.75);
+  expect_refused({"wall.spacing=0.75", "wall.jitter=0.05"}, "wall.jitter", "0 below spacing 1");
   expect_refused({"wall.jitter=0.1"}, "wall.jitter", "at most (wall.spacing - 1)/2 = 0");
   expect_refused({"wall.spacing=1.2", "wall.jitter=0.15"}, "wall.jitter", "at most");
   expect_refused({"wall.lattice=square", "wall.spacing=3", "wall.jitter=0.9"}, "wall.jitter",

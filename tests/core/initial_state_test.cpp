@@ -247,6 +247,17 @@ TEST(InitialState, HexagonalWallSpacingSetsTheNeighbourDistance) {
   EXPECT_NEAR(static_cast<double>(wall.size()), expected, 0.05 * expected);
 }
 
+// Below spacing 1 the target grains overlap (a smoother layer): the same lattice, denser.
+TEST(InitialState, OverlappingWallLatticeKeepsItsSpacing) {
+  Scene s;
+  s.jet.grains = 100;
+  s.wall.spacing = 0.6;
+  const std::vector<Vec<3>> wall = wall_positions(build_initial_state<3>(s));
+  EXPECT_NEAR(min_pair_distance(wall), 0.6, 1e-12);
+  const double expected = std::numbers::pi * 121.0 * 2.0 / (std::sqrt(3.0) * 0.36);
+  EXPECT_NEAR(static_cast<double>(wall.size()), expected, 0.05 * expected);
+}
+
 // A random layer: sites shifted by at most the jitter, never overlapping, the same for the same
 // seed, and the jet untouched (its own random stream).
 TEST(InitialState, JitteredWallStaysNearItsSitesWithoutOverlapAndLeavesTheJetAlone) {
