@@ -10,10 +10,13 @@ words leave open, each measured, beside the study's published numbers.
 4. The 2D fits pooled over phi~0 = 0.3 ... 0.9 and both layers, as the study's Figs. 6.5 and 6.7
    (reading_pooled2d, both height origins).
 5. Smaller conventions: F4.3's v2 normalisation, F6.3's phi_max, FE.1's printed parameters.
+6. The packed 2D jet on the flat plate (reading_hc_*): the soft DEM against the event-driven
+   backend and the exact free-streamline angle, one change at a time.
 
 Every number is formed from the ensembles (error bar: std over seeds) like the rest of the
 report; fits are the report's Levenberg-Marquardt fits to the pooled ensemble means.
 """
+import json
 import math
 
 import matplotlib
@@ -45,6 +48,7 @@ def section_readings(ctx):
     ring_frame(ctx, s, rr)
     pooled_2d(ctx, s, rr)
     conventions(ctx, s, rr)
+    packed_plate(ctx, s, rr)
     return s
 
 
@@ -67,19 +71,22 @@ def psi0_momentum(ctx, s, rr):
     if not momentum:
         s.add("**Not yet run**: group `reading_psi0_momentum`.")
         return
-    table = Table("psi0_readings", ["e", "X", "psi0 departure [deg] (10 seeds)",
-                                    "psi0 momentum [deg]", "the study's curve [deg]",
-                                    "departure, same seeds, equal bit for bit"],
+    table = Table("psi0_readings", ["e", "X", "psi0 departure [deg] (scattering)",
+                                    "psi0 departure [deg] (these runs)", "psi0 momentum [deg]",
+                                    "the study's curve [deg]"],
                   "Ensemble mean ± std over seeds; the study's curve is its fit law with its "
-                  "C0, C1, C2 = 1.68, 0.563, 0.554 rad (the same for every e).")
+                  "C0, C1, C2 = 1.68, 0.563, 0.554 rad (the same for every e). The scattering "
+                  "group's runs were made by an earlier granjet whose trajectories differ from "
+                  "today's in the last bits (grown by the flow's chaos), so the two departure "
+                  "columns are two ensembles of the same jets.")
     by_e = {}
     for key in sorted(momentum):
         e, x = key
         m = rr.radians_to_degrees(rr.global_measured(momentum[key], "psi0_momentum"))
         d = rr.radians_to_degrees(rr.global_measured(departure[key], "psi0")) \
             if key in departure else NOT_MEASURED
-        table.add(e, x, d, m, study_psi0_deg(x), same_departure(momentum[key],
-                                                                departure.get(key)))
+        again = rr.radians_to_degrees(rr.global_measured(momentum[key], "psi0_departure"))
+        table.add(e, x, d, again, m, study_psi0_deg(x))
         by_e.setdefault(e, []).append((x, m, d))
     s.add_table(table)
     spread = spread_over_e(by_e)
@@ -91,33 +98,6 @@ def psi0_momentum(ctx, s, rr):
 def key_of(point):
     return (point.number("contact.restitution"),
             point.number("wall.diameter") / point.number("jet.diameter"))
-
-
-def same_departure(reading_point, departure_point):
-    """Whether each seed's psi0_departure of the reading run equals psi0 of the scattering run
-    with the same seed (the analysis key must not touch the trajectories)."""
-    if departure_point is None:
-        return "–"
-    got = reading_point.per_seed(global_metric("psi0_departure"))
-    ref = departure_point.per_seed(global_metric("psi0"))
-    pairs = [(got[k], ref[k]) for k in got if k in ref]
-    if not pairs:
-        return "–"
-    return "yes" if all(a == b for a, b in pairs) else \
-        f"no ({sum(a != b for a, b in pairs)} of {len(pairs)} differ)"
-
-
-_GLOBAL_METRICS = {}
-
-
-def global_metric(name):
-    """A per-seed metric (cached function object, as per_seed wants): one stored global."""
-    if name not in _GLOBAL_METRICS:
-        def metric(analysis):
-            value = analysis.global_value(name)
-            return math.nan if value is None else value[0]
-        _GLOBAL_METRICS[name] = metric
-    return _GLOBAL_METRICS[name]
 
 
 def spread_over_e(by_e):
@@ -208,9 +188,42 @@ def stress_own(ctx, s, rr):
                 "with_target": both[0].json(), "without_target": both[1].json(), "study": study}
     s.add_table(ratio)
     s.add_table(raised_windows(ctx, rr, s))
+    s.add_table(smoother_targets(ctx, rr, s))
     s.add_table(slope_a(ctx, rr, with_wall, own, s))
     s.add_table(yield_stress(rr, with_wall, own, s))
     s.add_table(theory_ratios(rr, with_wall, own, s))
+
+
+TARGETS = (  # group, label: phi~0 = 0.9 jets on targets from the grain layer to the plate
+    ("rheology3d", "touching grains (spacing 1 d), the default"),
+    ("reading_smooth_target", "overlapping grains"),
+    ("sens_wall3d_plate", "flat plate"),
+)
+
+
+def smoother_targets(ctx, rr, s):
+    """F5.3's ratio and F5.7's a (phi~0 = 0.9) from the grain layer towards the flat plate."""
+    table = Table("targets", ["target", "wall.spacing", "mu_p", "|sigma_rz/sigma_zz| with "
+                              "target contacts", "without", "a (phi~0 = 0.9 alone)",
+                              "the study's ratio"],
+                  "phi~0 = 0.9, r/R_tar = 0.1, 5 d layer from the target grains' centres; "
+                  "per seed, then mean ± std over seeds; a: granjet's fit mu* = a I over the "
+                  "five rings (value ± std over seeds of each seed's fit).")
+    for group, label in TARGETS:
+        for p in sorted(rr.present(ctx.campaign.points(group)),
+                        key=lambda q: (q.number("wall.spacing"), q.number("contact.friction"))):
+            if not math.isclose(p.number("jet.phi_tilde"), 0.9):
+                continue
+            mu_p = p.number("contact.friction")
+            cells = [p.over_seeds(window_ratio(0, own, layers=1)) for own in (False, True)]
+            a = rr.fit_over_seeds(p, "mu_linear", "a")
+            spacing = "–" if group == "sens_wall3d_plate" else p.number("wall.spacing")
+            table.add(label, spacing, mu_p, *cells, a, STUDY_RATIO[friction(mu_p)])
+            s.results.setdefault("targets", {}).setdefault(group, {})[
+                f"spacing{spacing}_mu{mu_p:g}"] = {"with_target": cells[0].json(),
+                                                   "without_target": cells[1].json(),
+                                                   "a": a.json()}
+    return table
 
 
 WINDOW_SUBLAYERS = 10  # a 5 d window of 0.5 d sublayers
@@ -239,18 +252,20 @@ def raised_windows(ctx, rr, s):
 _WINDOW_METRICS = {}
 
 
-def window_ratio(first, own):
-    """A per-seed metric (one cached function object per window, as per_seed wants)."""
-    key = (first, own)
+def window_ratio(first, own, layers=WINDOW_SUBLAYERS):
+    """A per-seed metric (one cached function object per window, as per_seed wants): the inner
+    ring's |sigma_rz/sigma_zz| over `layers` layers from `first`, without the target's contacts
+    when `own`."""
+    key = (first, own, layers)
     if key not in _WINDOW_METRICS:
         def metric(analysis):
             parts = {}
             for name in ("stress.rz", "stress.zz", "stress_contact_wall.rz",
                          "stress_contact_wall.zz"):
                 field = analysis.field(name, quiet=True)
-                if field is None or field[0].shape[0] < first + WINDOW_SUBLAYERS:
+                if field is None or field[0].shape[0] < first + layers:
                     return math.nan
-                parts[name] = float(np.mean(field[0][first:first + WINDOW_SUBLAYERS, INNER]))
+                parts[name] = float(np.mean(field[0][first:first + layers, INNER]))
             rz, zz = parts["stress.rz"], parts["stress.zz"]
             if own:
                 rz, zz = rz - parts["stress_contact_wall.rz"], zz - parts["stress_contact_wall.zz"]
@@ -458,3 +473,54 @@ def conventions(ctx, s, rr):
           + ", eta_n = " + format_number(rr.contact_parameters_3_4_3_5(0.75, 0.01)[1], 4) +
           " at e = 0.75). granjet's FE.1 runs use the label's (e, t_c); section FE.1 shows "
           "them, and the printed pair is the t_c = 0.081 one, between its t_c = 0.1 and 0.05.")
+
+
+# ---- 6. the packed 2D jet on the plate: soft against hard grains ---------------------------
+PACKED_CASES = (  # group, label
+    ("reading_hc_packed", "event-driven (e(v_n), v0 = 0.1)"),
+    ("reading_hc_packed_ed_v0", "event-driven, v0 = 0.01"),
+    ("reading_hc_packed_dem", "soft DEM (e = 0.75, t_c = 0.1)"),
+    ("reading_hc_packed_dem_elastic", "soft DEM, e = 0.99"),
+    ("reading_hc_packed_dem_stiff", "soft DEM, t_c = 0.02"),
+)
+
+
+def packed_plate(ctx, s, rr):
+    s.add("### The packed 2D jet on the plate: soft against hard grains\n\n"
+          "The event-driven jet at the densest packing (area fraction 0.907) leaves at the exact "
+          "free-streamline angle; the soft DEM's same jet leaves below it. Each case changes one "
+          "thing; psi0 is the steady flow's (grains scattered in the analysis window) under "
+          "both readings, and the rms exit speed is sqrt(2 E_removed/(m N_removed)) of the "
+          "run's energy books.")
+    table = Table("packed_plate", ["case", "L/R", "exact [deg]", "departure [deg]",
+                                   "departure - exact", "momentum [deg]", "rms exit speed/u0"],
+                  "One seed a point (full lattices leave nothing random).")
+    found = False
+    for group, label in PACKED_CASES:
+        for p in sorted(rr.present(ctx.campaign.points(group)),
+                        key=lambda q: q.number("wall.diameter")):
+            found = True
+            exact = math.degrees(rr.global_measured(p, "psi0_free_streamline").value)
+            departure = math.degrees(rr.global_measured(p, "psi0_departure_window").value)
+            momentum = math.degrees(rr.global_measured(p, "psi0_momentum_window").value)
+            ratio = p.number("wall.diameter") / p.number("jet.diameter")
+            speed = exit_speed(p)
+            table.add(label, ratio, exact, departure, departure - exact, momentum, speed)
+            s.results.setdefault("packed_plate", {}).setdefault(group, {})[f"{ratio:g}"] = {
+                "exact": cd.finite_or_none(exact), "departure": cd.finite_or_none(departure),
+                "momentum": cd.finite_or_none(momentum), "exit_speed": cd.finite_or_none(speed)}
+    if not found:
+        s.add("**Not yet run**: groups `reading_hc_packed*`.")
+        return
+    s.add_table(table)
+
+
+def exit_speed(point):
+    """rms speed of the removed grains over u0 (mass m = 1), from the first seed's summary."""
+    for seed in point.seeds_done():
+        with open(point.seed_path(seed, "json"), encoding="utf-8") as f:
+            summary = json.load(f)
+        removed, energy = summary.get("removed", 0), summary.get("energy", {}).get("removed")
+        if removed and energy is not None:
+            return math.sqrt(2.0 * energy / removed) / point.number("jet.speed", 1.0)
+    return math.nan
