@@ -451,10 +451,10 @@ def small_at_every_friction(column, bound):
 
 def bursts_fall(column):
     """FE.1: the measure at the smallest t_c below that at the largest, beyond the combined
-    error bars."""
+    error bars (the study's e = 0.75 rows)."""
     def check(results):
         rows = {number(r.get("t_c")): as_measured(r.get(column))
-                for r in table_rows(results, "FE.1", "bursts")}
+                for r in table_rows(results, "FE.1", "bursts", {"e": 0.75})}
         rows = {t: m for t, m in sorted(rows.items()) if math.isfinite(t)
                 and math.isfinite(m.value)}
         if len(rows) < 2:
@@ -622,6 +622,12 @@ ROWS = [
 # The readings of the study's text (section Readings), each beside the same published number.
 WITHOUT_TARGET = "analysis.stress_wall_contacts = exclude (contacts with target grains left out)"
 READING_ROWS = [
+    *(Numeric("F4.2", f"{name} of the psi0(X) law [rad]", value, None,
+              reading_list_cell(("Readings", "psi0_momentum_fit", f"e{e:g}", "C"), k),
+              f"analysis.psi0 = momentum, fit to the ensemble means, e = {e:g}; error: the "
+              "fit's s.e.")
+      for k, (name, value) in enumerate(zip(("C0", "C1", "C2"), STUDY_C))
+      for e in RESTITUTIONS),
     *(Numeric("F4.2", f"psi0 at X = {x:g} [rad] (the study's law and C0, C1, C2)",
               study_psi0(x), None,
               table_cell("Readings", "psi0_readings", "psi0 momentum [deg]", {"e": e, "X": x},
@@ -633,6 +639,18 @@ READING_ROWS = [
               None, stored("Readings", "ratio_rz_zz_r0.1", key, "without_target"),
               f"{WITHOUT_TARGET}; wall centres, phi~0 = 0.9")
       for key, _, label in FRICTIONS),
+    *(Numeric("F5.3", f"abs(sigma_rz/sigma_zz) at r/R_tar = 0.1, {label}", STUDY_RATIO[key],
+              None, stored("Readings", "ratio_rz_zz_raised", key, window, "with_target"),
+              f"the 5 d window {window} d above the target grains' centres (rebuilt from 0.5 d "
+              "sublayers; the target's contacts do not reach it); phi~0 = 0.9")
+      for key, _, label in FRICTIONS for window in ("1-6", "2-7")),
+    *(Numeric("F5.3", f"abs(sigma_rz/sigma_zz) at r/R_tar = 0.1, {label}", STUDY_RATIO[key],
+              None, stored("Readings", "targets", "reading_smooth_target",
+                           f"spacing0.5_mu{mu_p:g}", part),
+              f"a smoother target: overlapping grains at wall.spacing = 0.5{how}; phi~0 = 0.9")
+      for key, mu_p, label in FRICTIONS
+      for part, how in (("with_target", ""), ("without_target",
+                                              ", without the target's contacts"))),
     *(Numeric("F5.7", f"a of mu* = a I, {label}", STUDY_A[key], None,
               stored("Readings", "a", key, "without", "a"),
               f"{WITHOUT_TARGET}; pooled over every ring and phi~0")

@@ -16,7 +16,6 @@ words leave open, each measured, beside the study's published numbers.
 Every number is formed from the ensembles (error bar: std over seeds) like the rest of the
 report; fits are the report's Levenberg-Marquardt fits to the pooled ensemble means.
 """
-import json
 import math
 
 import matplotlib
@@ -194,10 +193,10 @@ def stress_own(ctx, s, rr):
     s.add_table(theory_ratios(rr, with_wall, own, s))
 
 
-TARGETS = (  # group, label: phi~0 = 0.9 jets on targets from the grain layer to the plate
-    ("rheology3d", "touching grains (spacing 1 d), the default"),
-    ("reading_smooth_target", "overlapping grains"),
-    ("sens_wall3d_plate", "flat plate"),
+TARGETS = (  # label, group of the ratio and its layers, group of a (5 d layer, 5 rings)
+    ("touching grains (spacing 1 d), the default", "reading_stress_layers", 10, "rheology3d"),
+    ("overlapping grains", "reading_smooth_target", 1, "reading_smooth_target"),
+    ("flat plate", "sens_wall3d_plate", 1, "sens_wall3d_plate"),
 )
 
 
@@ -206,24 +205,31 @@ def smoother_targets(ctx, rr, s):
     table = Table("targets", ["target", "wall.spacing", "mu_p", "|sigma_rz/sigma_zz| with "
                               "target contacts", "without", "a (phi~0 = 0.9 alone)",
                               "the study's ratio"],
-                  "phi~0 = 0.9, r/R_tar = 0.1, 5 d layer from the target grains' centres; "
-                  "per seed, then mean ± std over seeds; a: granjet's fit mu* = a I over the "
-                  "five rings (value ± std over seeds of each seed's fit).")
-    for group, label in TARGETS:
-        for p in sorted(rr.present(ctx.campaign.points(group)),
-                        key=lambda q: (q.number("wall.spacing"), q.number("contact.friction"))):
+                  "phi~0 = 0.9, r/R_tar = 0.1, the 5 d layer from the target grains' centres "
+                  "(for the touching layer rebuilt from its 0.5 d sublayers); per seed, then "
+                  "mean ± std over seeds; a: granjet's fit mu* = a I over the five rings "
+                  "(value ± std over seeds of each seed's fit); '–' where the runs predate the "
+                  "stored target part.")
+    for label, group, layers, a_group in TARGETS:
+        fits = {key_of_target(p): p for p in rr.present(ctx.campaign.points(a_group))}
+        for p in sorted(rr.present(ctx.campaign.points(group)), key=key_of_target):
             if not math.isclose(p.number("jet.phi_tilde"), 0.9):
                 continue
-            mu_p = p.number("contact.friction")
-            cells = [p.over_seeds(window_ratio(0, own, layers=1)) for own in (False, True)]
-            a = rr.fit_over_seeds(p, "mu_linear", "a")
-            spacing = "–" if group == "sens_wall3d_plate" else p.number("wall.spacing")
-            table.add(label, spacing, mu_p, *cells, a, STUDY_RATIO[friction(mu_p)])
+            spacing, mu_p = key_of_target(p)
+            cells = [p.over_seeds(window_ratio(0, own, layers)) for own in (False, True)]
+            a = rr.fit_over_seeds(fits[(spacing, mu_p)], "mu_linear", "a") \
+                if (spacing, mu_p) in fits else NOT_MEASURED
+            shown = "–" if group == "sens_wall3d_plate" else spacing
+            table.add(label, shown, mu_p, *cells, a, STUDY_RATIO[friction(mu_p)])
             s.results.setdefault("targets", {}).setdefault(group, {})[
-                f"spacing{spacing}_mu{mu_p:g}"] = {"with_target": cells[0].json(),
-                                                   "without_target": cells[1].json(),
-                                                   "a": a.json()}
+                f"spacing{shown}_mu{mu_p:g}"] = {"with_target": cells[0].json(),
+                                                 "without_target": cells[1].json(),
+                                                 "a": a.json()}
     return table
+
+
+def key_of_target(point):
+    return (point.number("wall.spacing"), point.number("contact.friction"))
 
 
 WINDOW_SUBLAYERS = 10  # a 5 d window of 0.5 d sublayers
@@ -258,17 +264,19 @@ def window_ratio(first, own, layers=WINDOW_SUBLAYERS):
     when `own`."""
     key = (first, own, layers)
     if key not in _WINDOW_METRICS:
+        names = ("stress.rz", "stress.zz") + (
+            ("stress_contact_wall.rz", "stress_contact_wall.zz") if own else ())
+
         def metric(analysis):
-            parts = {}
-            for name in ("stress.rz", "stress.zz", "stress_contact_wall.rz",
-                         "stress_contact_wall.zz"):
+            parts = []
+            for name in names:
                 field = analysis.field(name, quiet=True)
                 if field is None or field[0].shape[0] < first + layers:
-                    return math.nan
-                parts[name] = float(np.mean(field[0][first:first + layers, INNER]))
-            rz, zz = parts["stress.rz"], parts["stress.zz"]
+                    return math.nan  # e.g. a run stored before the target's part was
+                parts.append(float(np.mean(field[0][first:first + layers, INNER])))
+            rz, zz = parts[0], parts[1]
             if own:
-                rz, zz = rz - parts["stress_contact_wall.rz"], zz - parts["stress_contact_wall.zz"]
+                rz, zz = rz - parts[2], zz - parts[3]
             return abs(rz / zz)
         _WINDOW_METRICS[key] = metric
     return _WINDOW_METRICS[key]
@@ -482,6 +490,8 @@ PACKED_CASES = (  # group, label
     ("reading_hc_packed_dem", "soft DEM (e = 0.75, t_c = 0.1)"),
     ("reading_hc_packed_dem_elastic", "soft DEM, e = 0.99"),
     ("reading_hc_packed_dem_stiff", "soft DEM, t_c = 0.02"),
+    ("reading_hc_packed_dem_verlet", "soft DEM, velocity Verlet"),
+    ("reading_hc_packed_dem_gap", "soft DEM, lattice spacing 1.001 d"),
 )
 
 
@@ -490,10 +500,9 @@ def packed_plate(ctx, s, rr):
           "The event-driven jet at the densest packing (area fraction 0.907) leaves at the exact "
           "free-streamline angle; the soft DEM's same jet leaves below it. Each case changes one "
           "thing; psi0 is the steady flow's (grains scattered in the analysis window) under "
-          "both readings, and the rms exit speed is sqrt(2 E_removed/(m N_removed)) of the "
-          "run's energy books.")
+          "both readings.")
     table = Table("packed_plate", ["case", "L/R", "exact [deg]", "departure [deg]",
-                                   "departure - exact", "momentum [deg]", "rms exit speed/u0"],
+                                   "departure - exact", "momentum [deg]"],
                   "One seed a point (full lattices leave nothing random).")
     found = False
     for group, label in PACKED_CASES:
@@ -504,23 +513,11 @@ def packed_plate(ctx, s, rr):
             departure = math.degrees(rr.global_measured(p, "psi0_departure_window").value)
             momentum = math.degrees(rr.global_measured(p, "psi0_momentum_window").value)
             ratio = p.number("wall.diameter") / p.number("jet.diameter")
-            speed = exit_speed(p)
-            table.add(label, ratio, exact, departure, departure - exact, momentum, speed)
+            table.add(label, ratio, exact, departure, departure - exact, momentum)
             s.results.setdefault("packed_plate", {}).setdefault(group, {})[f"{ratio:g}"] = {
                 "exact": cd.finite_or_none(exact), "departure": cd.finite_or_none(departure),
-                "momentum": cd.finite_or_none(momentum), "exit_speed": cd.finite_or_none(speed)}
+                "momentum": cd.finite_or_none(momentum)}
     if not found:
         s.add("**Not yet run**: groups `reading_hc_packed*`.")
         return
     s.add_table(table)
-
-
-def exit_speed(point):
-    """rms speed of the removed grains over u0 (mass m = 1), from the first seed's summary."""
-    for seed in point.seeds_done():
-        with open(point.seed_path(seed, "json"), encoding="utf-8") as f:
-            summary = json.load(f)
-        removed, energy = summary.get("removed", 0), summary.get("energy", {}).get("removed")
-        if removed and energy is not None:
-            return math.sqrt(2.0 * energy / removed) / point.number("jet.speed", 1.0)
-    return math.nan

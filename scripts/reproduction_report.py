@@ -1159,7 +1159,8 @@ def section_fe1(ctx):
     found = sorted(present(points), key=lambda q: -q.number("contact.contact_time"))
     s.add(seeds_note(found) + " T_g(t) from the stored frames (every output.interval) inside "
           "the analysis window; masses m = 1 as the study (spec §2).")
-    table = Table("bursts", ["t_c", "<T_g>", "std of T_g(t)", "peak T_g", "CV = std/<T_g>"],
+    table = Table("bursts", ["t_c", "e", "<T_g>", "std of T_g(t)", "peak T_g",
+                             "CV = std/<T_g>"],
                   "Per seed over the window, then mean ± std over seeds.")
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
     for k, p in enumerate(found):
@@ -1175,7 +1176,7 @@ def section_fe1(ctx):
                 drawn = True
         cells = [cd.spread_over_seeds(col) for col in zip(*per_seed)] if per_seed else \
             [NOT_MEASURED] * 4
-        table.add(p.number("contact.contact_time"), *cells)
+        table.add(p.number("contact.contact_time"), p.number("contact.restitution"), *cells)
         s.results.setdefault("by_t_c", {})[f"{p.number('contact.contact_time'):g}"] = {
             n: c.json() for n, c in zip(("mean", "std", "peak", "cv"), cells)}
     top.set_ylabel(r"$T_g$ [m $u_0^2$]")

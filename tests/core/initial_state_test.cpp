@@ -236,26 +236,18 @@ TEST(InitialState, SquareWallLatticeHoldsTheIntegerPointsOfTheDisk) {
   }
 }
 
+// Spread (1.2 d) or overlapping (0.6 d: a smoother layer) target grains keep the lattice's spacing.
 TEST(InitialState, HexagonalWallSpacingSetsTheNeighbourDistance) {
-  Scene s;
-  s.jet.grains = 100;
-  s.wall.spacing = 1.2;
-  const std::vector<Vec<3>> wall = wall_positions(build_initial_state<3>(s));
-  EXPECT_NEAR(min_pair_distance(wall), 1.2, 1e-12);
-  // Density of a hexagonal layer: 2/(sqrt 3 a^2) sites per unit area over the disk of radius 11.
-  const double expected = std::numbers::pi * 121.0 * 2.0 / (std::sqrt(3.0) * 1.44);
-  EXPECT_NEAR(static_cast<double>(wall.size()), expected, 0.05 * expected);
-}
-
-// Below spacing 1 the target grains overlap (a smoother layer): the same lattice, denser.
-TEST(InitialState, OverlappingWallLatticeKeepsItsSpacing) {
-  Scene s;
-  s.jet.grains = 100;
-  s.wall.spacing = 0.6;
-  const std::vector<Vec<3>> wall = wall_positions(build_initial_state<3>(s));
-  EXPECT_NEAR(min_pair_distance(wall), 0.6, 1e-12);
-  const double expected = std::numbers::pi * 121.0 * 2.0 / (std::sqrt(3.0) * 0.36);
-  EXPECT_NEAR(static_cast<double>(wall.size()), expected, 0.05 * expected);
+  for (const double spacing : {1.2, 0.6}) {
+    Scene s;
+    s.jet.grains = 100;
+    s.wall.spacing = spacing;
+    const std::vector<Vec<3>> wall = wall_positions(build_initial_state<3>(s));
+    EXPECT_NEAR(min_pair_distance(wall), spacing, 1e-12);
+    // Density of a hexagonal layer: 2/(sqrt 3 a^2) sites per unit area over the disk of radius 11.
+    const double expected = std::numbers::pi * 121.0 * 2.0 / (std::sqrt(3.0) * spacing * spacing);
+    EXPECT_NEAR(static_cast<double>(wall.size()), expected, 0.05 * expected) << spacing;
+  }
 }
 
 // A random layer: sites shifted by at most the jitter, never overlapping, the same for the same
