@@ -666,6 +666,12 @@ READING_ROWS = [
       for name, law, value, error in STUDY_FITS_2D
       for fig in ("F6.5" if law in ("6.2", "6.3") else "F6.7",)
       for origin in ("wall_centres", "wall_surface")),
+    *(Numeric("F6.5", f"{name} [{law}]", value, error,
+              stored("Readings", "pooled_2d", f"{origin}_centres", name, "value"),
+              f"pooled as the study, phi counted by grain centres (times the mean disk area); "
+              f"height origin: {origin.replace('_', ' ')}")
+      for name, law, value, error in STUDY_FITS_2D if law in ("6.2", "6.3")
+      for origin in ("wall_centres", "wall_surface")),
 ]
 ID_ORDER = [row.id for row in ROWS]
 ROWS = sorted(ROWS + READING_ROWS, key=lambda row: ID_ORDER.index(row.id))  # stable: by id

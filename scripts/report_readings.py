@@ -393,11 +393,19 @@ def ratio_cell(rr, point, numerator, denominator):
 
 
 # ---- 4. the 2D fits pooled over phi~0 ------------------------------------------------------
-POOLED_LAWS = (  # law, x field, y field, model, parameter names, positive x only
-    ("6.2", "I_T", "phi", pa.packing_6_2_6_3, ("phi_T", "a_T", "alpha_T")),
-    ("6.3", "I_s", "phi", pa.packing_6_2_6_3, ("phi_s", "a_s", "alpha_s")),
-    ("6.9", "I_s", "mu_star", pa.friction_6_9, ("mu_s", "mu_max", "I_0")),
-    ("6.10", "I_s", "mu_star", pa.friction_6_10, ("b", "beta")),
+# The disk area per grain centre of the 50:50 mix of diameters d and 0.8 d (scenes/jet2d.ini),
+# for phi counted by centres: n times it, assuming the flow keeps the mix (no segregation).
+MEAN_DISK_AREA = math.pi / 4 * (1.0 + 0.8 ** 2) / 2
+VOLUME, CENTRES = "grain area inside the bin", "centres x mean disk area"
+POOLED_LAWS = (  # law, x field, y field, y scale, model, parameter names, how phi is counted
+    ("6.2", "I_T", "phi", 1.0, pa.packing_6_2_6_3, ("phi_T", "a_T", "alpha_T"), VOLUME),
+    ("6.3", "I_s", "phi", 1.0, pa.packing_6_2_6_3, ("phi_s", "a_s", "alpha_s"), VOLUME),
+    ("6.9", "I_s", "mu_star", 1.0, pa.friction_6_9, ("mu_s", "mu_max", "I_0"), ""),
+    ("6.10", "I_s", "mu_star", 1.0, pa.friction_6_10, ("b", "beta"), ""),
+    ("6.2", "I_T", "n", MEAN_DISK_AREA, pa.packing_6_2_6_3, ("phi_T", "a_T", "alpha_T"),
+     CENTRES),
+    ("6.3", "I_s", "n", MEAN_DISK_AREA, pa.packing_6_2_6_3, ("phi_s", "a_s", "alpha_s"),
+     CENTRES),
 )
 STUDY_FITS_2D_BY_NAME = {name: (value, error) for name, _, value, error in STUDY_FITS_2D}
 POOLED_START = {"6.2": (0.85, 1.0, 1.2), "6.3": (0.83, 3.0, 1.3), "6.9": (0.02, 0.5, 0.1),
@@ -409,11 +417,13 @@ def pooled_2d(ctx, s, rr):
           "The study fits \"data of (a) and (b) layer for several phi~0\" (Figs. 6.5, 6.7); "
           "section F6.5 fits one phi~0 (0.9). Here every bin of both layers at phi~0 = 0.3, "
           "0.5, 0.7 and 0.9 enters one fit, under each height origin.")
-    table = Table("pooled_2d", ["height origin", "law", "parameter", "pooled fit ± LM s.e.",
-                                "± std over seeds", "the study"],
+    table = Table("pooled_2d", ["height origin", "phi counted as", "law", "parameter",
+                                "pooled fit ± LM s.e.", "± std over seeds", "the study"],
                   "Levenberg-Marquardt fits to the ensemble means of every bin (finite, I > 0) "
                   "of the four phi~0; second error: std over seeds of the same pooled fit made "
-                  "to each seed's bins.")
+                  "to each seed's bins. phi is granjet's (the grains' area inside the bin) or, "
+                  "the next reading, the grain centres in the bin times the mean disk area of "
+                  "the 50:50 mix (0.644 d^2, assuming no segregation).")
     found = False
     for group in ("reading_pooled2d", "reading_pooled2d_surface"):
         pts = rr.present(ctx.campaign.points(group))
@@ -421,21 +431,22 @@ def pooled_2d(ctx, s, rr):
             continue
         found = True
         origin = pts[0].param("analysis.height_origin", "wall_centres")
-        for law, x_name, y_name, model, names in POOLED_LAWS:
+        for law, x_name, y_name, scale, model, names, counted in POOLED_LAWS:
             x, y = rr.pooled_means(pts, x_name, y_name)
             keep = x > 0
-            p, err = rr.levenberg_marquardt(model, x[keep], y[keep], POOLED_START[law])
+            p, err = rr.levenberg_marquardt(model, x[keep], scale * y[keep], POOLED_START[law])
             per_seed = []
             for sx, sy in rr.pooled_per_seed(pts, x_name, y_name):
                 k = sx > 0
-                per_seed.append(rr.levenberg_marquardt(model, sx[k], sy[k], p)[0])
+                per_seed.append(rr.levenberg_marquardt(model, sx[k], scale * sy[k], p)[0])
             spread = [cd.spread_over_seeds(c).error for c in zip(*per_seed)] if per_seed \
                 else [math.nan] * len(names)
+            key = origin + ("_centres" if counted == CENTRES else "")
             for name, v, de, ds in zip(names, p, err, spread):
                 study = STUDY_FITS_2D_BY_NAME[name]
-                table.add(origin, law, name, Measured(v, de), Measured(v, ds),
+                table.add(origin, counted or "–", law, name, Measured(v, de), Measured(v, ds),
                           Measured(*study))
-                s.results.setdefault("pooled_2d", {}).setdefault(origin, {})[name] = {
+                s.results.setdefault("pooled_2d", {}).setdefault(key, {})[name] = {
                     "value": Measured(v, ds).json(), "lm_error": cd.finite_or_none(de),
                     "study": list(study)}
     if not found:
