@@ -72,23 +72,26 @@ void ScatteringMeasurement<D>::observe(const Particles<D>& particles, double tim
 }
 
 template <int D>
-double ScatteringMeasurement<D>::psi0_between(double t0, double t1) const {
-  std::vector<Vec<D>> in_window;
+typename ScatteringMeasurement<D>::Record ScatteringMeasurement<D>::seen_between(double t0,
+                                                                                 double t1) const {
+  Record r;
   for (std::size_t k = 0; k < velocity_.size(); ++k)
-    if (time_[k] >= t0 && time_[k] <= t1) in_window.push_back(velocity_[k]);
-  return scattering_angle<D>(in_window);
+    if (time_[k] >= t0 && time_[k] <= t1) {
+      r.velocity.push_back(velocity_[k]);
+      r.mass.push_back(mass_[k]);
+    }
+  return r;
+}
+
+template <int D>
+double ScatteringMeasurement<D>::psi0_between(double t0, double t1) const {
+  return scattering_angle<D>(seen_between(t0, t1).velocity);
 }
 
 template <int D>
 double ScatteringMeasurement<D>::psi0_momentum_between(double t0, double t1) const {
-  std::vector<Vec<D>> velocity;
-  std::vector<double> mass;
-  for (std::size_t k = 0; k < velocity_.size(); ++k)
-    if (time_[k] >= t0 && time_[k] <= t1) {
-      velocity.push_back(velocity_[k]);
-      mass.push_back(mass_[k]);
-    }
-  return momentum_scattering_angle<D>(velocity, mass, incident_speed_);
+  const Record r = seen_between(t0, t1);
+  return momentum_scattering_angle<D>(r.velocity, r.mass, incident_speed_);
 }
 
 template <int D>

@@ -21,10 +21,10 @@ namespace granjet::analysis {
 template <int D>
 double scattering_angle(std::span<const Vec<D>> velocities);
 
-// The momentum-balance reading of psi0 [4.3]: grains that arrived along -e_jet at `incident_speed`
-// and leave with `velocities` took the impulse sum m (v + u0 e_in)... from the target; with
-// 1 - cos psi0 = that impulse along the axis over the incident momentum sum m u0,
-// cos psi0 = sum m v . (-e_jet) / (u0 sum m). For a perfect fluid (every |v| = u0, one direction)
+// The momentum-balance reading of psi0 [4.3]: grains that arrived along e_in = -e_jet at
+// `incident_speed` u0 and leave with `velocities` took the impulse sum m (v - u0 e_in) from the
+// target; with 1 - cos psi0 = its component along -e_in over the incident momentum sum m u0,
+// cos psi0 = sum m v . e_in / (u0 sum m). For a perfect fluid (every |v| = u0, one direction)
 // it is the departure angle; slower grains at the same angle give a larger psi0. NaN for no
 // grains or a cosine beyond [-1, 1] (grains that left faster than they came).
 template <int D>
@@ -81,6 +81,13 @@ class ScatteringMeasurement {
 
  private:
   double radius_;
+  // The scattered grains first seen in a time window.
+  struct Record {
+    std::vector<Vec<D>> velocity;
+    std::vector<double> mass;
+  };
+  Record seen_between(double t0, double t1) const;
+
   double reference_;
   double incident_speed_;
   std::vector<bool> seen_;  // by grain id
