@@ -26,6 +26,8 @@ class RunObserver {
   // Its part of a checkpoint, in the group of that name, so that the observer of a resumed run
   // goes on where this one stopped.
   virtual std::string state_group() const = 0;
+  // Its name in a run's profile (`granjet run --profile`).
+  virtual std::string profile_name() const { return state_group(); }
   virtual void save_state(StateWriter& out) = 0;
   virtual void restore_state(StateReader& in) = 0;
 

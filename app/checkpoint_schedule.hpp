@@ -31,6 +31,7 @@ class CheckpointSchedule final : public analysis::VisitingObserver<D, Checkpoint
     write_();
   }
   std::string state_group() const override { return "run"; }
+  std::string profile_name() const override { return "checkpoints"; }
 
   template <class Visitor>
   void visit_state(Visitor& v) {

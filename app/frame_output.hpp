@@ -19,6 +19,7 @@ class FrameOutput final : public analysis::VisitingObserver<D, FrameOutput<D>> {
   // A frame when one is due, and at t_end.
   void observe(Simulator<D>& sim) override;
   std::string state_group() const override { return "run"; }
+  std::string profile_name() const override { return "frames"; }
 
   // The first frame, of a run that starts.
   void start(Simulator<D>& sim) { write(sim, 0); }

@@ -25,8 +25,9 @@ namespace {
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
               [--summary run.json] [--seeds 1..10 | 1,4,7] [--author NAME] [--quiet]
-              [--no-log]
+              [--no-log] [--profile]
   granjet resume RUN.h5.partial [--set run.t_end=T] [--summary run.json] [--quiet] [--no-log]
+              [--profile]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
               [--quiet]            (mpirun -n K granjet campaign ... spreads it over K ranks)
@@ -48,10 +49,14 @@ run options:
   --quiet           no progress rows
   --no-log          no OUT's stem + .log (the command, resolved scene, progress rows,
                     warnings and summary, as LAMMPS's log.lammps)
+  --profile         the loop's wall time per phase (neighbour rebuilds, contacts, grain
+                    update, observers ...) and the share of it that ran serially, at the
+                    end and in the summary: why a run does or does not scale with run.threads
 resume options (a run's .partial goes on from its last checkpoint, run.checkpoint_interval):
   --set KEY=VALUE   only run.t_end (to extend the run), run.threads, run.progress_interval
   --summary FILE    the JSON summary of the whole run (as run --summary)
   --no-log          do not append to the run's .log
+  --profile         as for run
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
@@ -126,7 +131,8 @@ int run(const std::vector<std::string>& args) {
       "backend", po::value(&o.backend))("set", po::value(&o.overrides)->composing())(
       "out", po::value<std::string>())("summary", po::value<std::string>())(
       "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet))(
-      "no-log", po::bool_switch())("author", po::value(&o.author));
+      "no-log", po::bool_switch())("author", po::value(&o.author))("profile",
+                                                                   po::bool_switch(&o.profile));
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
   o.log = !vm["no-log"].as<bool>();
@@ -141,7 +147,8 @@ int resume(const std::vector<std::string>& args) {
   po::options_description desc;
   desc.add_options()("file", po::value<std::string>()->required())(
       "set", po::value(&o.overrides)->composing())("summary", po::value<std::string>())(
-      "quiet", po::bool_switch(&o.quiet))("no-log", po::bool_switch());
+      "quiet", po::bool_switch(&o.quiet))("no-log", po::bool_switch())("profile",
+                                                                       po::bool_switch(&o.profile));
   const po::variables_map vm = parse(args, desc, "file");
   o.partial = vm["file"].as<std::string>();
   o.log = !vm["no-log"].as<bool>();

@@ -35,6 +35,7 @@ class ProgressRows final : public analysis::RunObserver<D> {
     while (next_progress_ <= t + half_step_) next_progress_ += interval_;
   }
   std::string state_group() const override { return "run"; }
+  std::string profile_name() const override { return "progress rows"; }
   void save_state(StateWriter& out) override {
     out("next_progress", next_progress_);
     out("wall_seconds", wall_seconds());

@@ -1,6 +1,7 @@
 #include "app/run_command.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
@@ -20,6 +21,7 @@
 #include "app/run_budget.hpp"
 #include "app/run_log.hpp"
 #include "app/run_loop.hpp"
+#include "app/run_profile.hpp"
 #include "app/run_warnings.hpp"
 #include "app/scene_file.hpp"
 #include "app/version.hpp"
@@ -31,8 +33,8 @@ namespace {
 
 template <int D>
 nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Simulator<D>& sim,
-                            std::int64_t grains_initial, double wall_seconds,
-                            double cpu_seconds, const std::string& status) {
+                            std::int64_t grains_initial, double wall_seconds, double cpu_seconds,
+                            const std::string& status) {
   const SimStats s = sim.stats();
   const EnergyBalance e = sim.energy();
   nlohmann::json j;
@@ -67,17 +69,17 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
 }
 
 // The lines that close a run: the loop's time and rate, and what it measured.
-std::string timing_text(const nlohmann::json& summary, const SimStats& s, bool events,
-                        double wall, double cpu) {
+std::string timing_text(const nlohmann::json& summary, const SimStats& s, bool events, double wall,
+                        double cpu) {
   std::ostringstream timing;
   timing << "loop time " << wall << " s (CPU " << cpu << " s)";
   if (events)
-    timing << " for " << s.events << " events (" << s.collisions
-           << " collisions, " << s.cell_crossings << " cell crossings), "
+    timing << " for " << s.events << " events (" << s.collisions << " collisions, "
+           << s.cell_crossings << " cell crossings), "
            << summary["collisions_per_second"].get<double>() << " collisions/s\n";
   else
-    timing << " for " << s.steps << " steps, "
-           << summary["particle_steps_per_second"].get<double>() << " particle-steps/s\n";
+    timing << " for " << s.steps << " steps, " << summary["particle_steps_per_second"].get<double>()
+           << " particle-steps/s\n";
   if (summary.contains("measured")) {
     timing << "measured";
     for (const auto& [key, value] : summary["measured"].items())
@@ -256,8 +258,12 @@ int run_scene(const Scene& requested, const RunOptions& options,
   progress.header();
   const Interrupts interrupts;
   sim->stop_when(&interrupts.stop_flag());
+  if (options.profile) sim->profile().enable();
+  const auto loop_start = std::chrono::steady_clock::now();
   const std::string status =
       observe_to_end(*sim, scene, observers, frames, *writer, interrupts, say);
+  const double loop_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 
   const double wall = progress.wall_seconds();
   const double cpu = progress.cpu_seconds();
@@ -275,6 +281,12 @@ int run_scene(const Scene& requested, const RunOptions& options,
   }
   const std::string timing = timing_text(summary, sim->stats(), backend.counts_events, wall, cpu);
   log.report() << timing;
+  if (options.profile) {
+    summary["profile"] = profile_json(sim->profile(), loop_seconds, scene.run.threads);
+    const std::string table = profile_text(summary["profile"]);
+    log.report() << table;
+    if (options.quiet) out << table;  // asked for: shown even without progress rows
+  }
   if (options.quiet && status != "complete") out << timing;  // a failed run reports even so
   log_summary(log, summary);
   if (!options.summary.empty()) write_json_atomically(options.summary, summary);
@@ -352,6 +364,7 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   run.summary = options.summary;
   run.quiet = options.quiet;
   run.log = options.log;
+  run.profile = options.profile;
   const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
   std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
   std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });

@@ -17,6 +17,9 @@ struct RunOptions {
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
   bool log = true;  // <out stem>.log beside the output (app/run_log.hpp)
+  // Wall time per phase of the loop and its serial share, reported at the end and in the
+  // summary (app/run_profile.hpp).
+  bool profile = false;
   // The H5MD author (/h5md/author/name); empty: $GRANJET_AUTHOR, else the login name.
   std::string author;
   // An ensemble: one run per seed (run.seed), each to <out stem>.seed<N>.h5 (and
@@ -35,6 +38,7 @@ struct ResumeOptions {
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
   bool log = true;  // appends to the run's log
+  bool profile = false;  // as RunOptions::profile
 };
 
 // `granjet resume`: the run of a .partial goes on from its last checkpoint, bit-identically to

@@ -17,17 +17,24 @@ using RunObservers = std::vector<analysis::RunObserver<D>*>;
 
 // Advances the run to t_end (within half a step), each time to the earliest time an observer
 // asks for, and lets every observer look there, in their order. Returns early, none looking,
-// once a signal has arrived.
+// once a signal has arrived. The observers' looks are phases of the simulator's profile.
 template <int D>
 void observe_until(Simulator<D>& sim, double t_end, double half_step,
                    const RunObservers<D>& observers, const Interrupts& interrupts) {
+  std::vector<int> phase;
+  for (const analysis::RunObserver<D>* o : observers)
+    phase.push_back(
+        sim.profile().phase("observer: " + o->profile_name(), PhaseProfile::Kind::kSerial));
   while (sim.time() < t_end - half_step) {
     double target = t_end;
     for (const analysis::RunObserver<D>* o : observers)
       target = std::min(target, o->next_time(sim));
     sim.advance_to(target);
     if (interrupts.signal() != 0) return;  // between the observers' times: none looks
-    for (analysis::RunObserver<D>* o : observers) o->observe(sim);
+    for (std::size_t k = 0; k < observers.size(); ++k) {
+      const PhaseProfile::Timer timing(&sim.profile(), phase[k]);
+      observers[k]->observe(sim);
+    }
   }
 }
 

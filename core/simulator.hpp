@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/particles.hpp"
+#include "core/phase_profile.hpp"
 #include "core/state_archive.hpp"
 
 namespace granjet {
@@ -111,11 +112,17 @@ class Simulator {
   // (event-driven), with time() where it stopped. The app sets it from a signal handler.
   void stop_when(const std::atomic<bool>* flag) { stop_ = flag; }
 
+  // Wall time per phase of advance_to, once enabled (`granjet run --profile`); the phases are
+  // the backend's own.
+  PhaseProfile& profile() { return profile_; }
+  const PhaseProfile& profile() const { return profile_; }
+
  protected:
   bool stop_requested() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
 
  private:
   const std::atomic<bool>* stop_ = nullptr;
+  PhaseProfile profile_;
 };
 
 }  // namespace granjet

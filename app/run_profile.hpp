@@ -1,0 +1,21 @@
+// `granjet run --profile`: the run loop's wall time split by phase (core/phase_profile.hpp),
+// for the summary and the log, with the serial share: the part of the loop that ran on one
+// thread while the others waited, which bounds the speed-up at any thread count (Amdahl).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/phase_profile.hpp"
+
+namespace granjet {
+
+// {"loop_seconds", "threads", "phases": [{"name", "kind", "seconds", "calls", "share"}],
+//  "untimed_seconds", "serial_seconds", "serial_share", "amdahl_limit"}: shares of the loop's
+// wall time; amdahl_limit is the speed-up no thread count exceeds, 1 / serial share.
+nlohmann::json profile_json(const PhaseProfile& profile, double loop_seconds, int threads);
+
+// The same as a table for the terminal and the log.
+std::string profile_text(const nlohmann::json& profile);
+
+}  // namespace granjet
