@@ -8,10 +8,12 @@
 #include <cstdint>
 #include <span>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "core/cell_sizing.hpp"
 #include "core/dim.hpp"
+#include "core/omp_team.hpp"
 
 namespace granjet {
 
@@ -19,13 +21,27 @@ template <int D>
 class CellGrid {
  public:
   // Bins `positions` into cells with edges of at least `min_edge`, grown when the box would need
-  // more than kMaxCellsPerGrain cells per grain (core/cell_sizing.hpp).
-  void build(std::span<const Vec<D>> positions, double min_edge) {
+  // more than kMaxCellsPerGrain cells per grain (core/cell_sizing.hpp). `threads` share the
+  // passes over the grains (the same grid for any count).
+  void build(std::span<const Vec<D>> positions, double min_edge, int threads = 1) {
     Vec<D> lo = Vec<D>::Constant(0.0), hi = Vec<D>::Constant(0.0);
     if (!positions.empty()) lo = hi = positions[0];
-    for (const Vec<D>& x : positions) {
-      lo = lo.cwiseMin(x);
-      hi = hi.cwiseMax(x);
+    const auto n = static_cast<std::int64_t>(positions.size());
+    std::vector<Vec<D>> thread_lo(threads, lo), thread_hi(threads, hi);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+      Vec<D> my_lo = lo, my_hi = hi;  // locals: the threads' slots share cache lines
+#pragma omp for schedule(static) nowait
+      for (std::int64_t i = 0; i < n; ++i) {
+        my_lo = my_lo.cwiseMin(positions[i]);
+        my_hi = my_hi.cwiseMax(positions[i]);
+      }
+      thread_lo[team_index()] = my_lo;
+      thread_hi[team_index()] = my_hi;
+    }
+    for (int t = 0; t < threads; ++t) {  // minima and maxima are exact: any order
+      lo = lo.cwiseMin(thread_lo[t]);
+      hi = hi.cwiseMax(thread_hi[t]);
     }
     const Vec<D> extent = (hi - lo).cwiseMax(min_edge);
     const double edge =
@@ -37,14 +53,15 @@ class CellGrid {
       // Cells are at least `edge` wide: dims_ rounds down.
       dims_[d] = std::max(1, static_cast<int>(extent[d] * inv_edge_[d]));
     }
-    bin(positions);
+    bin(positions, threads);
   }
 
   // Tiles the periodic box [0, box) (positions wrapped into it) with cells of at least
   // `min_edge`; neighbour cells wrap around. Three cells per axis at least, so that a cell's
   // neighbours are distinct cells and each pair of cells is visited once. A dilute box gets
   // larger cells rather than a huge empty grid, as in build().
-  void build_periodic(std::span<const Vec<D>> positions, const Vec<D>& box, double min_edge) {
+  void build_periodic(std::span<const Vec<D>> positions, const Vec<D>& box, double min_edge,
+                      int threads = 1) {
     periodic_ = true;
     lo_.setZero();
     const double edge =
@@ -55,7 +72,7 @@ class CellGrid {
         throw std::invalid_argument("periodic box narrower than three neighbour cells");
       inv_edge_[d] = dims_[d] / box[d];
     }
-    bin(positions);
+    bin(positions, threads);
   }
 
   // Grain indices sorted by cell (stable within a cell).
@@ -99,20 +116,52 @@ class CellGrid {
     return kMaxCellsPerGrain * static_cast<double>(std::max<std::size_t>(grains, 1));
   }
 
-  void bin(std::span<const Vec<D>> positions) {
+  // A counting sort by cell, stable (index order within a cell), shared among threads without
+  // atomics: each thread owns a run of cells and sweeps all the grains for those in it, counting
+  // then placing them. The runs split the grains evenly when they come nearly in cell order, as
+  // they do after the last rebuild's sort.
+  void bin(std::span<const Vec<D>> positions, int threads) {
     total_ = 1;
     for (int d = 0; d < D; ++d) total_ *= dims_[d];
-    cell_of_.resize(positions.size());
-    start_.assign(total_ + 1, 0);
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      cell_of_[i] = cell_index(positions[i]);
-      ++start_[cell_of_[i] + 1];
+    const auto n = static_cast<std::int64_t>(positions.size());
+    cell_of_.resize(n);
+    start_.resize(total_ + 1);
+    start_[0] = 0;
+    order_.resize(n);
+    run_count_.resize(threads);
+    std::vector<std::size_t> run_begin(threads + 1, 0), run_grains(threads, 0);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+#pragma omp for schedule(static)
+      for (std::int64_t i = 0; i < n; ++i) cell_of_[i] = cell_index(positions[i]);
+      const int t = team_index(), team = team_size();
+#pragma omp single
+      {
+        run_begin[team] = total_;
+        for (int s = 1; s < team; ++s)
+          run_begin[s] =
+              std::max(run_begin[s - 1], n > 0 ? std::size_t{cell_of_[n * s / team]} : 0);
+      }
+      const std::size_t lo = run_begin[t], cells = run_begin[t + 1] - lo;
+      std::vector<std::uint32_t>& count = run_count_[t];
+      count.assign(cells, 0);
+      for (std::int64_t i = 0; i < n; ++i) {
+        const std::size_t c = cell_of_[i] - lo;  // wraps for a cell below the run
+        if (c < cells) ++count[c];
+      }
+      std::uint32_t grains = 0;
+      for (std::uint32_t& c : count) grains += std::exchange(c, grains);  // exclusive sums
+      run_grains[t] = grains;
+#pragma omp barrier
+      std::uint32_t offset = 0;
+      for (int s = 0; s < t; ++s) offset += run_grains[s];
+      for (std::size_t c = 0; c < cells; ++c) start_[lo + c] = count[c] += offset;
+      if (t == team - 1) start_[total_] = offset + grains;
+      for (std::int64_t i = 0; i < n; ++i) {
+        const std::size_t c = cell_of_[i] - lo;
+        if (c < cells) order_[count[c]++] = static_cast<std::uint32_t>(i);
+      }
     }
-    for (std::size_t c = 0; c < total_; ++c) start_[c + 1] += start_[c];
-    order_.resize(positions.size());
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < positions.size(); ++i)
-      order_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
   }
 
   std::uint32_t cell_index(const Vec<D>& x) const {
@@ -152,6 +201,7 @@ class CellGrid {
   std::vector<std::uint32_t> cell_of_;
   std::vector<std::uint32_t> start_;
   std::vector<std::uint32_t> order_;
+  std::vector<std::vector<std::uint32_t>> run_count_;  // bin's scratch: per thread, per cell
 };
 
 }  // namespace granjet

@@ -55,22 +55,26 @@ class Particles {
 
   // Reorders every array so that new index k holds old index order[k]; `order` may be shorter
   // than size() (the grains left out are dropped).
-  void gather(std::span<const std::uint32_t> order) {
-    gather_one(id_, order);
-    gather_one(kind_, order);
-    gather_one(pos_, order);
-    gather_one(vel_, order);
-    gather_one(omega_, order);
-    gather_one(radius_, order);
-    gather_one(mass_, order);
-    gather_one(inv_mass_, order);
+  // `threads` share the copying (the result is the same for any count).
+  void gather(std::span<const std::uint32_t> order, int threads = 1) {
+    gather_one(id_, order, threads);
+    gather_one(kind_, order, threads);
+    gather_one(pos_, order, threads);
+    gather_one(vel_, order, threads);
+    gather_one(omega_, order, threads);
+    gather_one(radius_, order, threads);
+    gather_one(mass_, order, threads);
+    gather_one(inv_mass_, order, threads);
   }
 
   template <class T>
-  static void gather_one(std::vector<T>& values, std::span<const std::uint32_t> order) {
-    std::vector<T> out;
-    out.reserve(order.size());
-    for (std::uint32_t k : order) out.push_back(values[k]);
+  static void gather_one(std::vector<T>& values, std::span<const std::uint32_t> order,
+                         int threads = 1) {
+    std::vector<T> out(order.size());
+    const auto n = static_cast<std::int64_t>(order.size());
+    // Each thread writes (and so first touches) the stretch of the new order it will own.
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+    for (std::int64_t k = 0; k < n; ++k) out[k] = values[order[k]];
     values.swap(out);
   }
 

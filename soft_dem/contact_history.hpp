@@ -14,6 +14,7 @@
 
 #include "core/dim.hpp"
 #include "core/neighbour_list.hpp"
+#include "core/parallel_sort.hpp"
 #include "core/particles.hpp"
 #include "soft_dem/contact_table.hpp"
 #include "soft_dem/lane_vec.hpp"
@@ -35,20 +36,29 @@ class ContactHistory {
   // Their u_t, one row per contact, advanced in place by the contact law (kKeepShear only).
   Columns<D>& shear() { return shear_; }
 
-  // Moves on to this pass's contacts, `found` (increasing pair-list indices; it receives the
-  // last pass's list, to be reused as scratch): a pair still touching keeps its u_t, a new one
-  // starts from zero. Both lists increase, so one merge finds every previous u_t.
-  void carry_over(std::vector<std::uint32_t>& found) {
+  // Moves on to this pass's contacts, `found` (increasing pair-list indices): a pair still
+  // touching keeps its u_t, a new one starts from zero. Both lists increase, so a merge finds
+  // every previous u_t. In three parts, so that threads can share the middle one:
+  // prepare_carry(found.size()) once, carry(found, begin, end) over stretches that cover the
+  // list (each a merge of its own, started by a binary search), then finish_carry(found), which
+  // hands the last pass's list back in `found`, to be reused as scratch.
+  void prepare_carry(std::size_t found) {
+    if constexpr (kKeepShear) next_shear_.resize(found);
+  }
+  void carry(std::span<const std::uint32_t> found, std::size_t begin, std::size_t end) {
     if constexpr (kKeepShear) {
-      next_shear_.resize(found.size());
-      std::size_t before = 0;
-      for (std::size_t c = 0; c < found.size(); ++c) {
+      if (begin == end) return;
+      std::size_t before =
+          std::lower_bound(pair_.begin(), pair_.end(), found[begin]) - pair_.begin();
+      for (std::size_t c = begin; c < end; ++c) {
         while (before < pair_.size() && pair_[before] < found[c]) ++before;
         const bool continues = before < pair_.size() && pair_[before] == found[c];
         next_shear_.store(c, continues ? shear_.load(before) : LaneVec<D>::Zero());
       }
-      shear_.swap(next_shear_);
     }
+  }
+  void finish_carry(std::vector<std::uint32_t>& found) {
+    if constexpr (kKeepShear) shear_.swap(next_shear_);
     pair_.swap(found);
   }
 
@@ -62,15 +72,19 @@ class ContactHistory {
   }
 
   // Every touching pair's u_t by grain ids (empty without kKeepShear); pair_row and partner
-  // give the grains of each listed pair.
+  // give the grains of each listed pair. `threads` share the work (the same list for any count).
   std::vector<ByIds> by_ids(std::span<const GrainId> id, std::span<const std::uint32_t> pair_row,
-                            std::span<const std::uint32_t> partner) const {
+                            std::span<const std::uint32_t> partner, int threads = 1) const {
     std::vector<ByIds> history;
-    if constexpr (kKeepShear)
-      for (std::size_t c = 0; c < pair_.size(); ++c) {
+    if constexpr (kKeepShear) {
+      const auto contacts = static_cast<std::int64_t>(pair_.size());
+      history.resize(contacts);
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+      for (std::int64_t c = 0; c < contacts; ++c) {
         const std::uint32_t k = pair_[c];
-        history.push_back({id[pair_row[k]], id[partner[k]], shear_.template get<Vec<D>>(c)});
+        history[c] = {id[pair_row[k]], id[partner[k]], shear_.template get<Vec<D>>(c)};
       }
+    }
     return history;
   }
 
@@ -78,21 +92,27 @@ class ContactHistory {
   // (index_of(id) gives a grain's new index, or nothing once it was removed), by their index
   // in the new list. A pair still touching is still listed.
   template <class IndexOf>
-  void restore(const std::vector<ByIds>& history, IndexOf&& index_of, const PairList& pairs) {
-    std::vector<std::pair<std::uint32_t, Vec<D>>> carried;
-    for (const ByIds& h : history) {
-      const std::optional<std::uint32_t> a = index_of(h.a), b = index_of(h.b);
+  void restore(const std::vector<ByIds>& history, IndexOf&& index_of, const PairList& pairs,
+               int threads = 1) {
+    constexpr std::uint32_t kGone = UINT32_MAX;
+    const auto entries = static_cast<std::int64_t>(history.size());
+    std::vector<std::pair<std::uint32_t, Vec<D>>> carried(entries);
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+    for (std::int64_t h = 0; h < entries; ++h) {
+      carried[h] = {kGone, history[h].shear};
+      const std::optional<std::uint32_t> a = index_of(history[h].a), b = index_of(history[h].b);
       if (!a || !b) continue;
       const std::uint32_t i = std::min(*a, *b), j = std::max(*a, *b);
       // Find j in row i (a handful of partners).
       for (std::uint32_t k = pairs.first[i]; k < pairs.first[i + 1]; ++k)
         if (pairs.partner[k] == j) {
-          carried.emplace_back(k, h.shear);
+          carried[h].first = k;
           break;
         }
     }
-    std::sort(carried.begin(), carried.end(),
-              [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::erase_if(carried, [](const auto& c) { return c.first == kGone; });
+    parallel_sort(
+        carried, [](const auto& x, const auto& y) { return x.first < y.first; }, threads);
     pair_.resize(carried.size());
     shear_.resize(carried.size());
     for (std::size_t c = 0; c < carried.size(); ++c) {
@@ -104,7 +124,7 @@ class ContactHistory {
  private:
   std::vector<std::uint32_t> pair_;
   Columns<D> shear_;
-  Columns<D> next_shear_;  // carry_over's scratch
+  Columns<D> next_shear_;  // carry's scratch
 };
 
 }  // namespace granjet::dem

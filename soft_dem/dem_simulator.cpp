@@ -28,8 +28,9 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
       overlap_limit_(scene.run.max_overlap),
       tethered_(scene.has_tethered_wall()),
       threads_(scene.run.threads),
-      quiet_(scene.run.threads),
-      pass_(scene.run.threads, scene.run.max_overlap) {
+      phase_(register_phases(this->profile())),
+      quiet_(scene.run.threads, &this->profile()),
+      pass_(scene.run.threads, scene.run.max_overlap, &this->profile()) {
   if (scene.has_plate()) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
   // beyond that. The tethers' dashpots are wall.damping_ratio times the eta_n of [3.5] whatever
@@ -58,6 +59,18 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
         [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
   // What the scene started with: grains the first rebuild removed (outside the region) count.
   initial_energy_ = energy().total() + removed_energy_;
+}
+
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::register_phases(PhaseProfile& profile) -> Phases {
+  using Kind = PhaseProfile::Kind;
+  return {profile.phase("rebuild: histories by grain ids", Kind::kParallel),
+          profile.phase("rebuild: checks, removal, cell sort", Kind::kParallel),
+          profile.phase("rebuild: pair list", Kind::kParallel),
+          profile.phase("rebuild: histories onto the new list", Kind::kParallel),
+          profile.phase("tethered target", Kind::kSerial),
+          profile.phase("plate", Kind::kParallel),
+          profile.phase("Verlet predictor", Kind::kParallel)};
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -125,12 +138,13 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     const VerletStep<D, kRotation> predictor = verlet_step();
     const auto n = static_cast<std::int64_t>(p_.size());
     std::vector<double> thread_speed2(threads_, 0.0);
+    const PhaseProfile::Timer predicting = timer(phase_.predictor);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
       double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
 #pragma omp for schedule(static) nowait
       for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predictor.predict(i));
-      thread_speed2[thread_index()] = speed2;
+      thread_speed2[team_index()] = speed2;
     }
     double speed2 = 0.0;
     for (double s : thread_speed2) speed2 = sticky_max(speed2, s);
@@ -190,9 +204,11 @@ template <class Advance, class Coast>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
 double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
-  if (tethered_)
+  if (tethered_) {
+    const PhaseProfile::Timer tethering = timer(phase_.tethers);
     wall_.add_forces(
         p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+  }
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
   if (!quiet_.fresh()) {
     const auto radius = p_.radius();
@@ -216,6 +232,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
     const auto w = p_.spin();
     const auto radius = p_.radius();
     std::uint8_t* forced = forced_.data();
+    const PhaseProfile::Timer plating = timer(phase_.plate);
 #pragma omp parallel for num_threads(threads_) reduction(min \
                                                          : first_blown_on_plate) if (threads_ > 1)
     for (std::int64_t i = 0; i < n; ++i) {
@@ -310,6 +327,13 @@ void DemSimulator<D, Law, kMono, Space>::throw_overlap(std::size_t i, std::size_
 
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::check_finite() const {
+  const auto n = static_cast<std::int64_t>(p_.size());
+  const auto x = p_.position();
+  const auto v = p_.velocity();
+  bool any = false;
+#pragma omp parallel for num_threads(threads_) reduction(| : any) if (threads_ > 1)
+  for (std::int64_t i = 0; i < n; ++i) any |= !x[i].allFinite() || !v[i].allFinite();
+  if (!any) return;
   std::vector<GrainId> bad;
   for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
     if (!p_.position()[i].allFinite() || !p_.velocity()[i].allFinite()) bad.push_back(p_.id()[i]);
@@ -321,6 +345,14 @@ void DemSimulator<D, Law, kMono, Space>::check_finite() const {
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
   if (!scene_.has_wall()) return;
+  const auto n = static_cast<std::int64_t>(p_.size());
+  const auto kind = p_.kind();
+  const auto x = p_.position();
+  bool any = false;  // most rebuilds remove none: a shared look first
+#pragma omp parallel for num_threads(threads_) reduction(| : any) if (threads_ > 1)
+  for (std::int64_t i = 0; i < n; ++i)
+    any |= kind[i] == GrainKind::kFree && outside_region<D>(scene_.region, x[i]);
+  if (!any) return;
   std::vector<std::uint32_t> keep;
   keep.reserve(p_.size());
   for (std::uint32_t i = 0; i < p_.size(); ++i) {
@@ -336,56 +368,82 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
     if constexpr (kRotation)
       removed_energy_ += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
   }
-  if (keep.size() == p_.size()) return;
-  p_.gather(keep);
-  Particles<D>::gather_one(force_prev_, keep);
-  Particles<D>::gather_one(torque_prev_, keep);
-  Particles<D>::gather_one(inv_inertia_, keep);
+  p_.gather(keep, threads_);
+  Particles<D>::gather_one(force_prev_, keep, threads_);
+  Particles<D>::gather_one(torque_prev_, keep, threads_);
+  Particles<D>::gather_one(inv_inertia_, keep, threads_);
   if (plate_) plate_->gather(keep);
 }
 
 template <int D, class Law, bool kMono, class Space>
 auto DemSimulator<D, Law, kMono, Space>::histories() const -> std::vector<History> {
-  return pass_.history().by_ids(p_.id(), pair_row_, pairs_.partner);
+  return pass_.history().by_ids(p_.id(), pair_row_, pairs_.partner, threads_);
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::rebuild() {
+  std::vector<History> history;
+  {
+    const PhaseProfile::Timer timing = timer(phase_.rebuild_ids);
+    history = histories();
+  }
+  rebuild(history);
 }
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& history) {
+  std::optional<PhaseProfile::Timer> timing(std::in_place, &this->profile(), phase_.rebuild_sort);
   check_finite();
   remove_escaped();
-  double max_radius = 0.0;
-  for (double r : p_.radius()) max_radius = std::max(max_radius, r);
+  const auto radius = p_.radius();
+  double max_radius = radius.empty() ? 0.0 : radius[0];
+  if constexpr (!kMono) {
+    const auto grains = static_cast<std::int64_t>(radius.size());
+#pragma omp parallel for num_threads(threads_) reduction(max : max_radius) if (threads_ > 1)
+    for (std::int64_t i = 0; i < grains; ++i) max_radius = std::max(max_radius, radius[i]);
+  }
   const double cut = 2.0 * max_radius + scene_.run.skin;
   if constexpr (Space::kPeriodic) {
     for (Vec<D>& x : p_.position()) space_.wrap(x);
-    grid_.build_periodic(p_.position(), space_.box, cut);
+    grid_.build_periodic(p_.position(), space_.box, cut, threads_);
   } else {
-    grid_.build(p_.position(), cut);
+    grid_.build(p_.position(), cut, threads_);
   }
   const auto order = grid_.order();
-  p_.gather(order);
-  Particles<D>::gather_one(force_prev_, order);
-  Particles<D>::gather_one(torque_prev_, order);
-  force_.assign(p_.size(), Vec<D>::Zero());  // rebuilds come between force passes
-  forced_.assign(p_.size(), 3);              // unknown after the reordering: assume forces
-  torque_.assign(p_.size(), Dim<D>::zero_spin());
-  Particles<D>::gather_one(inv_inertia_, order);
+  p_.gather(order, threads_);
+  Particles<D>::gather_one(force_prev_, order, threads_);
+  Particles<D>::gather_one(torque_prev_, order, threads_);
+  Particles<D>::gather_one(inv_inertia_, order, threads_);
   if (plate_) plate_->gather(order);
-  for (std::size_t i = 0; i < p_.size(); ++i)
-    index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
+  const auto n = static_cast<std::int64_t>(p_.size());
+  force_.resize(n);
+  forced_.resize(n);
+  torque_.resize(n);
+  const auto id = p_.id();
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
+  for (std::int64_t i = 0; i < n; ++i) {
+    force_[i].setZero();  // rebuilds come between force passes
+    forced_[i] = 3;       // unknown after the reordering: assume forces
+    torque_[i] = Dim<D>::zero_spin();
+    index_of_id_[id[i]] = static_cast<std::uint32_t>(i);
+  }
 
   const auto kind = p_.kind();
+  timing.emplace(&this->profile(), phase_.rebuild_pairs);
   build_half_pairs<D>(
       grid_, p_.position(), p_.radius(), scene_.run.skin,
       [&](std::uint32_t i, std::uint32_t j) {
         return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
       },
       pairs_, space_, threads_);
+  timing.emplace(&this->profile(), phase_.rebuild_rows);
   pair_row_.resize(pairs_.size());
-  for (std::uint32_t i = 0; i < p_.size(); ++i)
-    std::fill(pair_row_.begin() + pairs_.first[i], pair_row_.begin() + pairs_.first[i + 1], i);
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
+  for (std::int64_t i = 0; i < n; ++i)
+    std::fill(pair_row_.begin() + pairs_.first[i], pair_row_.begin() + pairs_.first[i + 1],
+              static_cast<std::uint32_t>(i));
   pass_.history().restore(
       history,
       [this](GrainId id) -> std::optional<std::uint32_t> {
@@ -393,11 +451,14 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
         if (i == kRemoved) return std::nullopt;
         return i;
       },
-      pairs_);
+      pairs_, threads_);
   quiet_.expire();
   travel_ = 0.0;
   needs_rebuild_ = false;
-  free_grains_ = std::count(kind.begin(), kind.end(), GrainKind::kFree);
+  std::int64_t free = 0;
+#pragma omp parallel for num_threads(threads_) reduction(+ : free) if (threads_ > 1)
+  for (std::int64_t i = 0; i < n; ++i) free += kind[i] == GrainKind::kFree;
+  free_grains_ = free;
   ++stats_.neighbour_rebuilds;
 }
 

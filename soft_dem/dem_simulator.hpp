@@ -55,6 +55,13 @@ class DemSimulator final : public Simulator<D> {
   using History = typename Pass::History::ByIds;
   using WallLaw = typename Law::Wall;
 
+  // The simulator's own phases in the profile (the pass's and the quiet pairs' register theirs).
+  struct Phases {
+    int rebuild_ids, rebuild_sort, rebuild_pairs, rebuild_rows, tethers, plate, predictor;
+  };
+  static Phases register_phases(PhaseProfile& profile);
+  PhaseProfile::Timer timer(int phase) { return {&this->profile(), phase}; }
+
   void step();
   void add_travel(double largest_speed2);
   // The integrators over the current arrays (rebuilds reorder them: take these after one).
@@ -67,7 +74,7 @@ class DemSimulator final : public Simulator<D> {
   double force_pass(Advance&& advance, Coast&& coast);
   // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
   std::vector<History> histories() const;
-  void rebuild() { rebuild(histories()); }
+  void rebuild();
   void rebuild(const std::vector<History>& history);
   void remove_escaped();
   [[noreturn]] void throw_overlap(std::size_t i, std::size_t j) const;
@@ -101,6 +108,7 @@ class DemSimulator final : public Simulator<D> {
   bool tethered_;
   TetheredWall<D> wall_;
   int threads_ = 1;
+  Phases phase_;
 
   std::vector<Vec<D>> force_, force_prev_;  // F being accumulated (zero between passes), F(t-dt)
   std::vector<Spin<D>> torque_, torque_prev_;

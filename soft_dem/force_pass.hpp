@@ -22,16 +22,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <utility>
 #include <vector>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "core/dim.hpp"
 #include "core/neighbour_list.hpp"
+#include "core/omp_team.hpp"
 #include "core/particles.hpp"
+#include "core/phase_profile.hpp"
 #include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/contact_history.hpp"
 #include "soft_dem/contact_table.hpp"
@@ -39,14 +39,6 @@
 #include "soft_dem/lane_vec.hpp"
 
 namespace granjet::dem {
-
-inline int thread_index() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
 
 // kMono: every grain has the radius of the first (no radius lookups); Space: how separations
 // are taken (core/space.hpp).
@@ -64,17 +56,26 @@ class ForcePass {
     std::uint8_t* forced;
   };
 
-  ForcePass(int threads, double overlap_limit) : threads_(threads), overlap_limit_(overlap_limit) {}
+  // profile: where its phases' wall times go (none: not timed).
+  ForcePass(int threads, double overlap_limit, PhaseProfile* profile = nullptr)
+      : threads_(threads), overlap_limit_(overlap_limit), profile_(profile) {
+    if (profile_ == nullptr) return;
+    using Kind = PhaseProfile::Kind;
+    phase_.test = profile_->phase("contacts: distance test, history carry-over", Kind::kParallel);
+    phase_.forces = profile_->phase("contacts: forces and sums", Kind::kParallel);
+    phase_.late_sums = profile_->phase("contacts: late sums", Kind::kSerial);
+    phase_.update = profile_->phase("grains: update", Kind::kParallel);
+  }
 
   // The listed pairs in contact at the last evaluation and their history.
   History& history() { return history_; }
   const History& history() const { return history_; }
 
   // Phase 1, over the listed pairs `tested` (increasing indices; soft_dem/quiet_pairs.hpp says
-  // which others cannot touch). Each thread tests a contiguous stretch of them; the stretches
-  // are joined in order. The index of every pair is written and the count advances only for a
-  // contact: no branch. A non-finite separation counts as apart (the simulator's check reports
-  // it).
+  // which others cannot touch). Each thread tests a contiguous stretch of them, then copies its
+  // contacts into their place in the joined list and carries their histories over. The index
+  // of every pair is written and the count advances only for a contact: no branch. A
+  // non-finite separation counts as apart (the simulator's check reports it).
   void find_contacts(const Particles<D>& p, const PairList& pairs,
                      const std::vector<std::uint32_t>& pair_row,
                      std::span<const std::uint32_t> tested, const Space& space) {
@@ -87,10 +88,12 @@ class ForcePass {
     const std::uint32_t* row = pair_row.data();
     const std::uint32_t* partner = pairs.partner.data();
     found_.resize(threads_);
-    std::vector<std::size_t> count(threads_, 0);
-#pragma omp parallel for num_threads(threads_) schedule(static, 1) if (threads_ > 1)
-    for (int t = 0; t < threads_; ++t) {
-      const std::size_t begin = listed * t / threads_, end = listed * (t + 1) / threads_;
+    std::vector<std::size_t> count(threads_ + 1, 0);  // count[t + 1]: stretch t's contacts
+    const PhaseProfile::Timer timing(profile_, phase_.test);
+#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+    {
+      const int t = team_index(), team = team_size();
+      const std::size_t begin = listed * t / team, end = listed * (t + 1) / team;
       std::vector<std::uint32_t>& out = found_[t];
       if (out.size() < end - begin) out.resize(end - begin);
       std::uint32_t* slot = out.data();
@@ -103,12 +106,21 @@ class ForcePass {
         slot[touching] = k;
         touching += d2 < reach * reach;
       }
-      count[t] = touching;
+      count[t + 1] = touching;
+#pragma omp barrier
+      std::size_t first = 0;  // where this stretch's contacts go in the joined list
+      for (int s = 0; s <= t; ++s) first += count[s];
+#pragma omp single
+      {
+        std::size_t total = 0;
+        for (int s = 0; s <= team; ++s) total += count[s];
+        found_pair_.resize(total);
+        history_.prepare_carry(total);
+      }  // (a barrier: the joined list is sized)
+      std::copy(slot, slot + touching, found_pair_.begin() + first);
+      history_.carry(found_pair_, first, first + touching);
     }
-    found_pair_.clear();
-    for (int t = 0; t < threads_; ++t)
-      found_pair_.insert(found_pair_.end(), found_[t].begin(), found_[t].begin() + count[t]);
-    history_.carry_over(found_pair_);
+    history_.finish_carry(found_pair_);
   }
 
   // Phases 2 and 3: each contact's force and torques, added to its grains in `sums`. Returns
@@ -133,33 +145,32 @@ class ForcePass {
     // geometry through the law to the sums.
     constexpr std::int64_t kBlock = 32;
     const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
-    const std::size_t n = p.size();
+    const auto n = static_cast<std::int64_t>(p.size());
     later_.resize(threads_);
+    later_window_.resize(threads_);
     deferred_.resize(threads_);
     bool any_too_deep = false;  // the first such contact is looked for only then
+    std::int64_t span = 0;      // the largest j - i of a contact
+    int team_used = 1;
+    std::optional<PhaseProfile::Timer> timing(std::in_place, profile_, phase_.forces);
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) reduction(max : span)
       for (std::int64_t c = 0; c < contacts; ++c) {
         grain_i[c] = row[pair[c]];
         grain_j[c] = partner[pair[c]];
+        span = std::max(span, grain_j[c] - grain_i[c]);
       }
       // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
       // earlier stretch also touches must first have those contacts: its sums wait for the
       // serial sweep below (few grains: the contacts are in row order, partners close by).
-      const int t = thread_index();
-      const std::int64_t begin = std::min(contacts, blocks * t / threads_ * kBlock);
-      const std::int64_t end = std::min(contacts, blocks * (t + 1) / threads_ * kBlock);
+      const int t = team_index(), team = team_size();
+      if (t == 0) team_used = team;
+      const std::int64_t begin = std::min(contacts, blocks * t / team * kBlock);
+      const std::int64_t end = std::min(contacts, blocks * (t + 1) / team * kBlock);
       std::vector<std::uint8_t>& later = later_[t];
       std::vector<std::uint32_t>& deferred = deferred_[t];
-      later.assign(t > 0 ? n : 0, 0);
-      if (t > 0 && begin < end) {
-        const std::int64_t first = grain_i[begin];  // no earlier contact touches a grain below
-        for (std::int64_t c = 0; c < begin; ++c) {
-          later[grain_i[c]] |= grain_i[c] >= first;
-          later[grain_j[c]] |= grain_j[c] >= first;
-        }
-      }
+      if (t > 0) flag_later(later, later_window_[t], n, begin, end, span);
       deferred.resize(end - begin);
       std::size_t waiting = 0;
       for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
@@ -180,7 +191,8 @@ class ForcePass {
       }
       deferred.resize(waiting);
     }
-    for (int t = 1; t < threads_; ++t)  // the stretches in order: each grain's sums in list order
+    timing.emplace(profile_, phase_.late_sums);
+    for (int t = 1; t < team_used; ++t)  // the stretches in order: each grain's sums in list order
       for (std::uint32_t c : deferred_[t]) {
         if (later_[t][grain_i[c]] != 0) sums.add_i(c);
         if (later_[t][grain_j[c]] != 0) sums.add_j(c);
@@ -213,11 +225,12 @@ class ForcePass {
     std::vector<std::int64_t> listed_count(threads_, 0);
     std::uint8_t* pushed = pushed_.data();
     std::vector<double> thread_largest(threads_, 0.0);
+    const PhaseProfile::Timer timing(profile_, phase_.update);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
       // Each thread flags and lists the pushed grains of its own range, in index order, and
       // moves the coasting ones.
-      const int t = thread_index();
+      const int t = team_index();
       const std::int64_t begin = n * t / threads_, end = n * (t + 1) / threads_;
       for (std::int64_t i = begin; i < end; ++i)
         pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
@@ -298,6 +311,27 @@ class ForcePass {
     return too_deep != 0;
   }
 
+  // Flags in `later` (one byte per grain, kept zero outside `window`) the grains of contacts
+  // [begin, end) that a contact before begin touches too: those from grain_i[begin] on, which
+  // only the contacts of the span rows before it can reach (contacts come in row order).
+  void flag_later(std::vector<std::uint8_t>& later, std::pair<std::int64_t, std::int64_t>& window,
+                  std::int64_t n, std::int64_t begin, std::int64_t end, std::int64_t span) const {
+    const std::int64_t* grain_i = contact_i_.data();
+    const std::int64_t* grain_j = contact_j_.data();
+    if (static_cast<std::int64_t>(later.size()) != n)
+      later.assign(n, 0);
+    else
+      std::fill(later.begin() + window.first, later.begin() + window.second, 0);
+    window = {0, 0};
+    if (begin >= end) return;
+    const std::int64_t first = grain_i[begin];  // no earlier contact touches a grain below
+    window = {first, std::min(n, first + span + 1)};
+    for (std::int64_t c = begin - 1; c >= 0 && grain_i[c] + span >= first; --c) {
+      later[grain_i[c]] |= grain_i[c] >= first;
+      later[grain_j[c]] |= grain_j[c] >= first;
+    }
+  }
+
   // Adds contact c's force and torques to its two grains and flags them. Raw pointers: Eigen
   // stores through may-alias vector types, after which a pointer read from a member would have
   // to be read again.
@@ -335,12 +369,17 @@ class ForcePass {
 
   int threads_;
   double overlap_limit_;
+  PhaseProfile* profile_;
+  struct {
+    int test = 0, forces = 0, late_sums = 0, update = 0;
+  } phase_;
   History history_;
   Table contacts_;
   std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
   // evaluate_contacts' scratch, per thread: the grains an earlier thread's contacts touch too,
   // and the contacts whose sums wait for the serial sweep.
   std::vector<std::vector<std::uint8_t>> later_;
+  std::vector<std::pair<std::int64_t, std::int64_t>> later_window_;  // where later_ may be set
   std::vector<std::vector<std::uint32_t>> deferred_;
   // find_contacts' scratch: each thread's stretch of the list, and their join.
   std::vector<std::vector<std::uint32_t>> found_;

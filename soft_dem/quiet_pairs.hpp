@@ -15,6 +15,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -22,7 +23,9 @@
 
 #include "core/dim.hpp"
 #include "core/neighbour_list.hpp"
+#include "core/omp_team.hpp"
 #include "core/particles.hpp"
+#include "core/phase_profile.hpp"
 
 namespace granjet::dem {
 
@@ -33,8 +36,14 @@ class QuietPairs {
   static constexpr int kMaxAge = 128;
   static constexpr int kMargin = 3;
 
-  // threads: how many share the last pass over the pairs (the same list for any count).
-  explicit QuietPairs(int threads = 1) : threads_(threads) {}
+  // threads: how many share the last pass over the pairs (the same list for any count);
+  // profile: where its phases' wall times go (none: not timed).
+  explicit QuietPairs(int threads = 1, PhaseProfile* profile = nullptr)
+      : threads_(threads), profile_(profile) {
+    if (profile_ == nullptr) return;
+    phase_classify_ = profile_->phase("quiet pairs: classify", PhaseProfile::Kind::kParallel);
+    phase_after_ = profile_->phase("quiet pairs: after pass", PhaseProfile::Kind::kSerial);
+  }
 
   // The listed pairs to test (increasing pair-list indices), for the pass about to run.
   std::span<const std::uint32_t> tested() const { return tested_; }
@@ -46,87 +55,137 @@ class QuietPairs {
   // Classifies the pairs of `pairs` (rows pair_row) at the start of a pass. force_before: each
   // grain's force at the last pass (a grain with none moves this pass as if it coasted, whatever
   // its forced bits say); reach(i, j): the sum of the radii; step: the time step (a coasting
-  // grain moves by step times its velocity).
+  // grain moves by step times its velocity). The threads share every sweep; the pairs to test
+  // come out the same for any thread count whenever a majority velocity exists (and are
+  // always the pairs that can touch).
   template <class Space, class Reach>
   void classify(const Particles<D>& p, std::span<const Vec<D>> force_before, const PairList& pairs,
                 std::span<const std::uint32_t> pair_row, const Space& space, double step,
                 Reach&& reach) {
-    const std::size_t n = p.size(), listed = pairs.size();
-    const auto x = p.position();
-    const auto v = p.velocity();
-    const auto kind = p.kind();
-    age_ = 0;
-    // The shared velocity: the one most grains without a force have, if more than half of them
-    // have one (a majority vote, Boyer and Moore's). Another choice only skips fewer pairs.
-    Vec<D> shared = Vec<D>::Zero();
-    std::size_t votes = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (kind[i] != GrainKind::kFree || !force_before[i].isZero(0.0)) continue;
-      if (votes == 0) shared = v[i];
-      votes += v[i] == shared ? 1 : -1;
-    }
-    trusted_.resize(n);
-    double largest = 0.0;  // max |x| over the grains
-    std::size_t quiet = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      trusted_[i] = kind[i] == GrainKind::kFree && v[i] == shared && force_before[i].isZero(0.0);
-      quiet += trusted_[i];
-      largest = std::max(largest, x[i].cwiseAbs().maxCoeff());
-    }
-    tested_.resize(listed);
-    // Too few to skip much (a gas: only the vote's winner): spare the passes over the pairs.
-    if (8 * quiet < n) {
-      for (std::size_t k = 0; k < listed; ++k) tested_[k] = static_cast<std::uint32_t>(k);
-      return;
-    }
-    next_.resize(n);
+    const auto n = static_cast<std::int64_t>(p.size());
+    const auto listed = static_cast<std::int64_t>(pairs.size());
+    const Vec<D>* x = p.position().data();
+    const Vec<D>* v = p.velocity().data();
+    const GrainKind* kind = p.kind().data();
+    const Vec<D>* f = force_before.data();
     const std::uint32_t* row = pair_row.data();
     const std::uint32_t* partner = pairs.partner.data();
-    for (int layer = 0; layer < kMargin; ++layer) {
-      // Raw pointers: a store through a byte may alias anything, a vector's own pointer too.
-      const std::uint8_t* now = trusted_.data();
-      std::uint8_t* next = next_.data();
-      std::copy(now, now + n, next);
-      for (std::size_t k = 0; k < listed; ++k) {
-        next[row[k]] &= now[partner[k]];
-        next[partner[k]] &= now[row[k]];
+    const PhaseProfile::Timer timing(profile_, phase_classify_);
+    age_ = 0;
+    trusted_.resize(n);
+    next_.resize(n);
+    tested_.resize(listed);
+    kept_.resize(threads_);
+    // Per thread: its range's majority candidate and how many grains of its range have each
+    // thread's candidate.
+    std::vector<Vec<D>> candidate(threads_, Vec<D>::Zero());
+    std::vector<std::int64_t> tally(threads_ * threads_, 0);
+    std::vector<std::size_t> kept_count(threads_ + 1, 0);
+    Vec<D> shared = Vec<D>::Zero();
+    double largest = 0.0;    // max |x| over the grains
+    std::int64_t quiet = 0;  // trusted grains before the margin
+#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+    {
+      const int t = team_index(), team = team_size();
+      const std::int64_t first = n * t / team, last = n * (t + 1) / team;
+      const auto coasts = [&](std::int64_t i) {
+        return kind[i] == GrainKind::kFree && f[i].isZero(0.0);
+      };
+      // The shared velocity: the one most grains without a force have, if more than half of
+      // them have one. A majority of all is one of some range, which Boyer and Moore's vote
+      // finds there; the candidate with the most grains overall wins (the lowest range on a
+      // tie). Another choice only skips fewer pairs.
+      std::int64_t votes = 0;
+      for (std::int64_t i = first; i < last; ++i) {
+        if (!coasts(i)) continue;
+        if (votes == 0) candidate[t] = v[i];
+        votes += v[i] == candidate[t] ? 1 : -1;
       }
-      trusted_.swap(next_);
-    }
-    // The drift of a separation over kMaxAge steps, with the coordinates grown by as many
-    // steps (twice over: the increment is rounded too), and room for the rounding of the
-    // contact test itself.
-    const double reach_of_x = largest + 2.0 * kMaxAge * step * shared.cwiseAbs().maxCoeff();
-    const double drift = 2.0 * kMaxAge * std::sqrt(double{D}) * 0x1p-52 * reach_of_x;
-    // Each thread writes the kept indices of its stretch of pairs at the stretch's start; the
-    // stretches then move down into one list, in order.
-    std::vector<std::size_t> kept(threads_, 0);
-#pragma omp parallel for num_threads(threads_) schedule(static, 1) if (threads_ > 1)
-    for (int t = 0; t < threads_; ++t) {
-      const std::size_t begin = listed * t / threads_, end = listed * (t + 1) / threads_;
-      std::size_t count = begin;
-      for (std::size_t k = begin; k < end; ++k) {
-        const std::uint32_t i = pair_row[k], j = pairs.partner[k];
-        const double apart = reach(i, j) * (1.0 + 0x1p-40) + drift;
-        const bool skip = (trusted_[i] & trusted_[j]) != 0 &&
-                          space.separation(x[i], x[j]).squaredNorm() > apart * apart;
-        tested_[count] = static_cast<std::uint32_t>(k);
-        count += !skip;
+#pragma omp barrier
+      std::vector<std::int64_t> mine(team, 0);  // a local: the threads' rows share cache lines
+      for (std::int64_t i = first; i < last; ++i)
+        if (coasts(i))
+          for (int s = 0; s < team; ++s) mine[s] += v[i] == candidate[s];
+      std::copy(mine.begin(), mine.end(), tally.begin() + t * team);
+#pragma omp barrier
+#pragma omp single
+      {
+        std::int64_t best = -1;
+        for (int s = 0; s < team; ++s) {
+          std::int64_t total = 0;
+          for (int u = 0; u < team; ++u) total += tally[u * team + s];
+          if (total > best) {
+            best = total;
+            shared = candidate[s];
+          }
+        }
       }
-      kept[t] = count - begin;
+#pragma omp for schedule(static) reduction(+ : quiet) reduction(max : largest)
+      for (std::int64_t i = 0; i < n; ++i) {
+        trusted_[i] = coasts(i) && v[i] == shared;
+        quiet += trusted_[i];
+        largest = std::max(largest, x[i].cwiseAbs().maxCoeff());
+      }
+      // Too few to skip much (a gas: only the vote's winner): every pair is tested.
+      if (8 * quiet < n) {
+#pragma omp for schedule(static)
+        for (std::int64_t k = 0; k < listed; ++k) tested_[k] = static_cast<std::uint32_t>(k);
+      } else {
+        for (int layer = 0; layer < kMargin; ++layer) {
+          // A grain stays trusted while all its partners are: the stores only clear, so the
+          // threads may share the pairs (relaxed byte stores, in any order).
+          const std::uint8_t* now = trusted_.data();
+          std::uint8_t* next = next_.data();
+#pragma omp for schedule(static)
+          for (std::int64_t i = 0; i < n; ++i) next[i] = now[i];
+#pragma omp for schedule(static)
+          for (std::int64_t k = 0; k < listed; ++k) {
+            const std::uint32_t i = row[k], j = partner[k];
+            if (now[j] == 0)
+              std::atomic_ref<std::uint8_t>(next[i]).store(0, std::memory_order_relaxed);
+            if (now[i] == 0)
+              std::atomic_ref<std::uint8_t>(next[j]).store(0, std::memory_order_relaxed);
+          }
+#pragma omp single
+          trusted_.swap(next_);
+        }
+        // The drift of a separation over kMaxAge steps, with the coordinates grown by as many
+        // steps (twice over: the increment is rounded too), and room for the rounding of the
+        // contact test itself.
+        const double reach_of_x = largest + 2.0 * kMaxAge * step * shared.cwiseAbs().maxCoeff();
+        const double drift = 2.0 * kMaxAge * std::sqrt(double{D}) * 0x1p-52 * reach_of_x;
+        // Each thread lists the kept pairs of its stretch, then copies them to their place in
+        // the joined list.
+        const std::int64_t begin = listed * t / team, end = listed * (t + 1) / team;
+        std::vector<std::uint32_t>& kept = kept_[t];
+        kept.resize(end - begin);
+        std::size_t count = 0;
+        for (std::int64_t k = begin; k < end; ++k) {
+          const std::uint32_t i = row[k], j = partner[k];
+          const double apart = reach(i, j) * (1.0 + 0x1p-40) + drift;
+          const bool skip = (trusted_[i] & trusted_[j]) != 0 &&
+                            space.separation(x[i], x[j]).squaredNorm() > apart * apart;
+          kept[count] = static_cast<std::uint32_t>(k);
+          count += !skip;
+        }
+        kept_count[t + 1] = count;
+#pragma omp barrier
+        std::size_t at = 0;
+        for (int s = 0; s <= t; ++s) at += kept_count[s];
+        std::copy(kept.begin(), kept.begin() + count, tested_.begin() + at);
+      }
     }
-    std::size_t count = kept[0];
-    for (int t = 1; t < threads_; ++t) {
-      const std::size_t begin = listed * t / threads_;
-      for (std::size_t m = 0; m < kept[t]; ++m) tested_[count + m] = tested_[begin + m];
-      count += kept[t];
+    if (8 * quiet >= n) {
+      std::size_t total = 0;
+      for (std::size_t count : kept_count) total += count;
+      tested_.resize(total);
     }
-    tested_.resize(count);
   }
 
   // After the pass's forces are summed (forced bit 0: pushed at this pass): the classification
   // ends if a trusted grain was pushed, and ages by a pass otherwise.
   void after_pass(std::span<const std::uint8_t> forced) {
+    const PhaseProfile::Timer timing(profile_, phase_after_);
     std::uint8_t pushed = 0;
     for (std::size_t i = 0; i < forced.size(); ++i) pushed |= trusted_[i] & forced[i];
     age_ = (pushed & 1) != 0 ? kMaxAge : age_ + 1;
@@ -134,9 +193,12 @@ class QuietPairs {
 
  private:
   int threads_;
+  PhaseProfile* profile_;
+  int phase_classify_ = 0, phase_after_ = 0;
   int age_ = kMaxAge;
   std::vector<std::uint8_t> trusted_, next_;  // per grain: its pairs with trusted grains skip
   std::vector<std::uint32_t> tested_;
+  std::vector<std::vector<std::uint32_t>> kept_;  // classify's scratch: each thread's kept pairs
 };
 
 }  // namespace granjet::dem

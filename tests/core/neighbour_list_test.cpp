@@ -1,10 +1,15 @@
-// The cell-grid half list finds exactly the pairs a brute-force search finds.
+// The cell-grid half list finds exactly the pairs a brute-force search finds; the cell sort and
+// the parallel sort give one order for any thread count.
 #include "core/neighbour_list.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <functional>
 #include <random>
 #include <set>
+
+#include "core/parallel_sort.hpp"
 
 namespace granjet {
 namespace {
@@ -132,6 +137,52 @@ TYPED_TEST(NeighbourList, ThreadedBuildEqualsSerialBuild) {
     EXPECT_GT(one.size(), 100u);
     EXPECT_EQ(one.first, three.first) << "periodic " << periodic;
     EXPECT_EQ(one.partner, three.partner) << "periodic " << periodic;
+  }
+}
+
+}  // namespace
+}  // namespace granjet
+
+namespace granjet {
+namespace {
+
+// The cell sort shared among threads is the one-thread counting sort, entry for entry: grains
+// in cell order, index order within a cell, whichever way the threads' runs of cells fall
+// (here shuffled grains, so that the runs split them unevenly).
+TYPED_TEST(NeighbourList, CellSortIsTheSameForAnyThreadCount) {
+  constexpr int D = TypeParam::kDim;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 9.0);
+  std::vector<Vec<D>> x(3000);
+  for (Vec<D>& xi : x)
+    for (int d = 0; d < D; ++d) xi[d] = u(rng);
+  CellGrid<D> one;
+  one.build(x, 1.2);
+  std::vector<std::uint32_t> start;
+  for (std::size_t c = 0; c <= one.cells(); ++c) start.push_back(one.start(c));
+  for (int threads : {2, 3, 7}) {
+    CellGrid<D> shared;
+    shared.build(x, 1.2, threads);
+    ASSERT_EQ(shared.cells(), one.cells());
+    EXPECT_TRUE(std::ranges::equal(shared.order(), one.order())) << threads << " threads";
+    for (std::size_t c = 0; c <= one.cells(); ++c) ASSERT_EQ(shared.start(c), start[c]);
+  }
+  // Cell order, and index order within a cell.
+  for (std::size_t c = 0; c < one.cells(); ++c)
+    for (std::uint32_t k = one.start(c); k + 1 < one.start(c + 1); ++k)
+      EXPECT_LT(one.order()[k], one.order()[k + 1]);
+}
+
+TEST(ParallelSort, GivesStdSortsOrderForAnyThreadCount) {
+  std::mt19937_64 rng(3);
+  std::vector<std::uint64_t> values(50000);
+  for (std::uint64_t& v : values) v = rng();
+  std::vector<std::uint64_t> expected = values;
+  std::sort(expected.begin(), expected.end());
+  for (int threads : {1, 2, 3, 5, 16}) {
+    std::vector<std::uint64_t> sorted = values;
+    parallel_sort(sorted, std::less<>(), threads);
+    EXPECT_EQ(sorted, expected) << threads << " threads";
   }
 }
 

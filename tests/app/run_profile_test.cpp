@@ -1,0 +1,115 @@
+// `granjet run --profile`: the loop's wall time by phase, and its serial share (Amdahl's bound
+// on the speed-up), from core/phase_profile.hpp through app/run_profile.cpp to the summary.
+#include "app/run_profile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "command_fixture.hpp"
+#include "core/phase_profile.hpp"
+
+namespace granjet {
+namespace {
+
+namespace fs = std::filesystem;
+using Kind = PhaseProfile::Kind;
+
+TEST(PhaseProfile, DisabledTimersAddNothingAndEnabledOnesAddTheirScopesWallTime) {
+  PhaseProfile profile;
+  const int work = profile.phase("work", Kind::kParallel);
+  EXPECT_EQ(profile.phase("work", Kind::kParallel), work);  // one phase per name
+  { const PhaseProfile::Timer timing(&profile, work); }
+  EXPECT_EQ(profile.phases()[work].calls, 0);
+  profile.enable();
+  {
+    const PhaseProfile::Timer timing(&profile, work);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_EQ(profile.phases()[work].calls, 1);
+  EXPECT_GE(profile.phases()[work].seconds, 0.020);
+  EXPECT_LT(profile.phases()[work].seconds, 2.0);
+}
+
+TEST(RunProfile, SerialShareCountsSerialPhasesAndTheUntimedRest) {
+  PhaseProfile profile;
+  profile.enable();
+  const int parallel = profile.phase("pairs", Kind::kParallel);
+  const int serial = profile.phase("sweep", Kind::kSerial);
+  profile.phase("never run", Kind::kSerial);
+  {
+    const PhaseProfile::Timer timing(&profile, parallel);
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  }
+  {
+    const PhaseProfile::Timer timing(&profile, serial);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const double timed = profile.phases()[parallel].seconds + profile.phases()[serial].seconds;
+  const double loop = timed + 0.010;  // 10 ms between the phases
+  const nlohmann::json j = profile_json(profile, loop, 4);
+  ASSERT_EQ(j["phases"].size(), 2u);  // the phase never run is left out
+  EXPECT_EQ(j["phases"][0]["name"], "pairs");
+  EXPECT_EQ(j["phases"][0]["kind"], "parallel");
+  EXPECT_EQ(j["phases"][1]["kind"], "serial");
+  EXPECT_NEAR(j["untimed_seconds"].get<double>(), 0.010, 1e-12);
+  const double serial_seconds = profile.phases()[serial].seconds + 0.010;
+  EXPECT_NEAR(j["serial_share"].get<double>(), serial_seconds / loop, 1e-12);
+  EXPECT_NEAR(j["amdahl_limit"].get<double>(), loop / serial_seconds, 1e-9);
+  const std::string text = profile_text(j);
+  EXPECT_NE(text.find("pairs"), std::string::npos);
+  EXPECT_NE(text.find("on 4 threads"), std::string::npos);
+  EXPECT_NE(text.find("serial share"), std::string::npos);
+}
+
+using GranjetCommand = testing::CommandTest;
+
+// The soft DEM's phases and the observers' looks are all there, their sum is within the loop's
+// wall time, and profiling changes no result.
+TEST_F(GranjetCommand, ProfileSplitsTheLoopByPhaseAndChangesNoResult) {
+  const std::string args = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=400 --set run.t_end=4"
+                           " --set output.interval=2 --set run.threads=2";
+  const fs::path plain = dir_ / "plain.json", profiled = dir_ / "profiled.json";
+  ASSERT_EQ(granjet(args + " --out " + (dir_ / "a.h5").string() + " --summary " + plain.string()),
+            0)
+      << err_;
+  ASSERT_EQ(granjet(args + " --profile --out " + (dir_ / "b.h5").string() + " --summary " +
+                    profiled.string()),
+            0)
+      << err_;
+  std::ifstream printed(dir_ / "stdout.txt");
+  const std::string table((std::istreambuf_iterator<char>(printed)), {});
+  EXPECT_NE(table.find("serial share"), std::string::npos) << table;  // shown even with --quiet
+  const nlohmann::json a = summary("plain.json"), b = summary("profiled.json");
+  EXPECT_FALSE(a.contains("profile"));
+  ASSERT_TRUE(b.contains("profile"));
+  EXPECT_EQ(a["energy"], b["energy"]);  // bit for bit
+  const nlohmann::json& p = b["profile"];
+  EXPECT_EQ(p["threads"], 2);
+  double timed = 0.0;
+  std::vector<std::string> names;
+  for (const nlohmann::json& phase : p["phases"]) {
+    EXPECT_GE(phase["seconds"].get<double>(), 0.0);
+    EXPECT_GT(phase["calls"].get<std::int64_t>(), 0);
+    timed += phase["seconds"].get<double>();
+    names.push_back(phase["name"]);
+  }
+  for (const char* expected :
+       {"rebuild: pair list", "contacts: forces and sums", "grains: update", "observer: frames"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  EXPECT_LE(timed, p["loop_seconds"].get<double>() * (1.0 + 1e-9));
+  EXPECT_GT(p["serial_share"].get<double>(), 0.0);
+  EXPECT_LE(p["serial_share"].get<double>(), 1.0);
+}
+
+}  // namespace
+}  // namespace granjet
