@@ -536,15 +536,33 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpul
   last_collect_time_ = time();
   const auto x = p_.position();
   const auto id = p_.id();
-  for_each_contact(
-      [&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
-          const Vec<D>& v_rel) {
-        Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance the history
-        const Vec<D> f = law_.force(g, v_rel, shear);
-        // The partner's nearest image: position_i - position_j is the contact's separation.
-        out.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
-      },
-      [](std::uint32_t) {});
+  // Runs of rows with as many listed pairs each, taken by the threads as they come free (the
+  // contacts, which cost most, crowd into a few runs); the runs' transfers are joined in row
+  // order, as one thread would list them.
+  const int runs = threads_ == 1 ? 1 : 16 * threads_;
+  std::vector<std::vector<PairImpulse<D>>> found(runs);
+  const auto n = static_cast<std::int64_t>(p_.size());
+  const std::vector<std::uint32_t>& first = pairs_.first;
+  const auto row_at = [&](int r) {  // the first row of run r
+    const std::size_t pair = pairs_.size() * r / runs;
+    return r == runs ? n : std::lower_bound(first.begin(), first.begin() + n, pair) - first.begin();
+  };
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1) if (threads_ > 1)
+  for (int r = 0; r < runs; ++r) {
+    std::vector<PairImpulse<D>>& mine = found[r];
+    for (std::int64_t i = row_at(r); i < row_at(r + 1); ++i)
+      for_each_contact_of(
+          i,
+          [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+            Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
+            const Vec<D> f = law_.force(g, v_rel, shear);
+            // The partner's nearest image: position_i - position_j is the separation.
+            mine.push_back({id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f});
+          },
+          [](std::uint32_t) {});
+  }
+  for (const std::vector<PairImpulse<D>>& run : found)
+    out.insert(out.end(), run.begin(), run.end());
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
     const Vec<D> f = plate_->force(i, g, v_rel);
     out.push_back({id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f});
