@@ -84,7 +84,10 @@ class QuietPairs {
     Vec<D> shared = Vec<D>::Zero();
     double largest = 0.0;    // max |x| over the grains
     std::int64_t quiet = 0;  // trusted grains before the margin
-#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+    // firstprivate: each thread's own copies of the pointers stay in registers; shared ones
+    // would be read again after every byte store, which may alias anything.
+#pragma omp parallel num_threads(threads_) if (threads_ > 1) \
+    firstprivate(x, v, kind, f, row, partner)
     {
       const int t = team_index(), team = team_size();
       const std::int64_t first = n * t / team, last = n * (t + 1) / team;
@@ -102,11 +105,13 @@ class QuietPairs {
         votes += v[i] == candidate[t] ? 1 : -1;
       }
 #pragma omp barrier
-      std::vector<std::int64_t> mine(team, 0);  // a local: the threads' rows share cache lines
-      for (std::int64_t i = first; i < last; ++i)
-        if (coasts(i))
-          for (int s = 0; s < team; ++s) mine[s] += v[i] == candidate[s];
-      std::copy(mine.begin(), mine.end(), tally.begin() + t * team);
+      if (team > 1) {                             // alone, the one candidate wins
+        std::vector<std::int64_t> mine(team, 0);  // a local: the threads' rows share cache lines
+        for (std::int64_t i = first; i < last; ++i)
+          if (coasts(i))
+            for (int s = 0; s < team; ++s) mine[s] += v[i] == candidate[s];
+        std::copy(mine.begin(), mine.end(), tally.begin() + t * team);
+      }
 #pragma omp barrier
 #pragma omp single
       {
@@ -134,17 +139,20 @@ class QuietPairs {
         for (int layer = 0; layer < kMargin; ++layer) {
           // A grain stays trusted while all its partners are: the stores only clear, so the
           // threads may share the pairs (relaxed byte stores, in any order).
-          const std::uint8_t* now = trusted_.data();
+          const std::uint8_t* now = trusted_.data();  // raw: a byte store may alias anything
           std::uint8_t* next = next_.data();
 #pragma omp for schedule(static)
           for (std::int64_t i = 0; i < n; ++i) next[i] = now[i];
+          // Without a branch (untrusted grains come in no order a predictor learns): the zero
+          // goes to the grain or, when its partner is trusted, to a byte of the thread's own.
+          std::uint8_t ignored = 0;
 #pragma omp for schedule(static)
           for (std::int64_t k = 0; k < listed; ++k) {
             const std::uint32_t i = row[k], j = partner[k];
-            if (now[j] == 0)
-              std::atomic_ref<std::uint8_t>(next[i]).store(0, std::memory_order_relaxed);
-            if (now[i] == 0)
-              std::atomic_ref<std::uint8_t>(next[j]).store(0, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(now[j] != 0 ? ignored : next[i])
+                .store(0, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(now[i] != 0 ? ignored : next[j])
+                .store(0, std::memory_order_relaxed);
           }
 #pragma omp single
           trusted_.swap(next_);
@@ -155,15 +163,17 @@ class QuietPairs {
         const double reach_of_x = largest + 2.0 * kMaxAge * step * shared.cwiseAbs().maxCoeff();
         const double drift = 2.0 * kMaxAge * std::sqrt(double{D}) * 0x1p-52 * reach_of_x;
         // Each thread lists the kept pairs of its stretch, then copies them to their place in
-        // the joined list.
+        // the joined list; the first thread's place is the list's start, where it lists them.
         const std::int64_t begin = listed * t / team, end = listed * (t + 1) / team;
-        std::vector<std::uint32_t>& kept = kept_[t];
-        kept.resize(end - begin);
+        std::vector<std::uint32_t>& scratch = kept_[t];
+        if (t > 0) scratch.resize(end - begin);
+        std::uint32_t* kept = t > 0 ? scratch.data() : tested_.data();
         std::size_t count = 0;
+        const std::uint8_t* trusted = trusted_.data();
         for (std::int64_t k = begin; k < end; ++k) {
           const std::uint32_t i = row[k], j = partner[k];
           const double apart = reach(i, j) * (1.0 + 0x1p-40) + drift;
-          const bool skip = (trusted_[i] & trusted_[j]) != 0 &&
+          const bool skip = (trusted[i] & trusted[j]) != 0 &&
                             space.separation(x[i], x[j]).squaredNorm() > apart * apart;
           kept[count] = static_cast<std::uint32_t>(k);
           count += !skip;
@@ -172,7 +182,7 @@ class QuietPairs {
 #pragma omp barrier
         std::size_t at = 0;
         for (int s = 0; s <= t; ++s) at += kept_count[s];
-        std::copy(kept.begin(), kept.begin() + count, tested_.begin() + at);
+        if (t > 0) std::copy(kept, kept + count, tested_.begin() + at);
       }
     }
     if (8 * quiet >= n) {
