@@ -68,7 +68,7 @@ auto DemSimulator<D, Law, kMono, Space>::register_phases(PhaseProfile& profile) 
           profile.phase("rebuild: checks, removal, cell sort", Kind::kParallel),
           profile.phase("rebuild: pair list", Kind::kParallel),
           profile.phase("rebuild: histories onto the new list", Kind::kParallel),
-          profile.phase("tethered target", Kind::kSerial),
+          profile.phase("tethered target", Kind::kParallel),
           profile.phase("plate", Kind::kParallel),
           profile.phase("Verlet predictor", Kind::kParallel)};
 }
@@ -207,7 +207,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
   if (tethered_) {
     const PhaseProfile::Timer tethering = timer(phase_.tethers);
     wall_.add_forces(
-        p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+        p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_), threads_);
   }
   for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
   if (!quiet_.fresh()) {

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/particles.hpp"
@@ -33,27 +35,47 @@ class TetheredWall {
         const double rest = (p.position()[i] - p.position()[j]).norm();
         if (rest <= bond_range) bonds_.push_back({p.id()[i], p.id()[j], rest});
       }
+    index_bonds();
   }
 
   std::size_t bonds() const { return bonds_.size(); }
 
-  // Adds the tether forces; index_of maps a grain id to its current index.
+  // Adds the tether forces; index_of maps a grain id to its current index. `threads` share
+  // the bonds, then the grains; each grain adds its anchor's force, then its bonds' in bond
+  // order, the same sums for any thread count.
   template <class IndexOf>
-  void add_forces(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force) const {
+  void add_forces(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force,
+                  int threads = 1) const {
     const auto x = p.position();
     const auto v = p.velocity();
-    for (const Anchor& a : anchors_) {
-      const std::size_t i = index_of(a.id);
-      force[i] -= spring_ * (x[i] - a.position) + damping_ * v[i];
-    }
-    for (const Bond& b : bonds_) {
-      const std::size_t i = index_of(b.i), j = index_of(b.j);
-      const Vec<D> r = x[i] - x[j];
-      const double dist = r.norm();
-      const Vec<D> n = r / dist;
-      const double f = -spring_ * (dist - b.rest) - damping_ * (v[i] - v[j]).dot(n);
-      force[i] += f * n;
-      force[j] -= f * n;
+    const auto bonds = static_cast<std::int64_t>(bonds_.size());
+    const auto anchors = static_cast<std::int64_t>(anchors_.size());
+    bond_force_.resize(bonds);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+#pragma omp for schedule(static)
+      for (std::int64_t k = 0; k < bonds; ++k) {  // the force on the bond's first grain
+        const Bond& b = bonds_[k];
+        const std::size_t i = index_of(b.i), j = index_of(b.j);
+        const Vec<D> r = x[i] - x[j];
+        const double dist = r.norm();
+        const Vec<D> n = r / dist;
+        const double f = -spring_ * (dist - b.rest) - damping_ * (v[i] - v[j]).dot(n);
+        bond_force_[k] = f * n;
+      }
+#pragma omp for schedule(static)
+      for (std::int64_t a = 0; a < anchors; ++a) {
+        const std::size_t i = index_of(anchors_[a].id);
+        Vec<D> sum = force[i] - (spring_ * (x[i] - anchors_[a].position) + damping_ * v[i]);
+        for (std::uint32_t m = bonds_of_first_[a]; m < bonds_of_first_[a + 1]; ++m) {
+          const std::int64_t signed_bond = bonds_of_[m];  // k + 1 for a first grain, -(k + 1)
+          if (signed_bond > 0)
+            sum += bond_force_[signed_bond - 1];
+          else
+            sum -= bond_force_[-signed_bond - 1];
+        }
+        force[i] = sum;
+      }
     }
   }
 
@@ -71,6 +93,28 @@ class TetheredWall {
   }
 
  private:
+  // Each anchor's bonds in bond order (bonds_of_first_ is by anchor, as prefix offsets), signed
+  // by the grain's end: from the anchors' and bonds' ids.
+  void index_bonds() {
+    std::unordered_map<GrainId, std::uint32_t> anchor_of;
+    for (std::size_t a = 0; a < anchors_.size(); ++a)
+      anchor_of[anchors_[a].id] = static_cast<std::uint32_t>(a);
+    std::vector<std::vector<std::int64_t>> of(anchors_.size());
+    for (std::size_t k = 0; k < bonds_.size(); ++k) {
+      const auto i = anchor_of.find(bonds_[k].i), j = anchor_of.find(bonds_[k].j);
+      if (i == anchor_of.end() || j == anchor_of.end())
+        throw std::runtime_error("a tether bond joins a grain that has no anchor");
+      of[i->second].push_back(static_cast<std::int64_t>(k) + 1);
+      of[j->second].push_back(-static_cast<std::int64_t>(k) - 1);
+    }
+    bonds_of_first_.assign(1, 0);
+    bonds_of_.clear();
+    for (const std::vector<std::int64_t>& list : of) {
+      bonds_of_.insert(bonds_of_.end(), list.begin(), list.end());
+      bonds_of_first_.push_back(static_cast<std::uint32_t>(bonds_of_.size()));
+    }
+  }
+
   struct Anchor {
     GrainId id;
     Vec<D> position;
@@ -114,11 +158,16 @@ class TetheredWall {
       anchors_.push_back({anchor_id[k], anchor_position[k]});
     for (std::size_t k = 0; k < rest.size(); ++k)
       bonds_.push_back({bond_ids[2 * k], bond_ids[2 * k + 1], rest[k]});
+    index_bonds();
   }
 
  private:
   std::vector<Anchor> anchors_;
   std::vector<Bond> bonds_;
+  std::vector<std::uint32_t> bonds_of_first_{0};
+  std::vector<std::int64_t> bonds_of_;
+  mutable std::vector<Vec<D>>
+      bond_force_;  // add_forces' scratch: each bond's force on its first grain
 };
 
 }  // namespace granjet::dem
