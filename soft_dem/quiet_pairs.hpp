@@ -46,7 +46,7 @@ class QuietPairs {
   }
 
   // The listed pairs to test (increasing pair-list indices), for the pass about to run.
-  std::span<const std::uint32_t> tested() const { return tested_; }
+  std::span<const std::uint32_t> tested() const { return {tested_.data(), tested_count_}; }
   // Whether the classification still holds for the next pass.
   bool fresh() const { return age_ < kMaxAge; }
   // After a neighbour rebuild: the list it classified is gone.
@@ -74,7 +74,10 @@ class QuietPairs {
     age_ = 0;
     trusted_.resize(n);
     next_.resize(n);
-    tested_.resize(listed);
+    // Only grown: shrinking to the kept count and growing back would fill the tail anew, on one
+    // thread, at every classification.
+    if (tested_.size() < static_cast<std::size_t>(listed)) tested_.resize(listed);
+    tested_count_ = listed;
     kept_.resize(threads_);
     // Per thread: its range's majority candidate and how many grains of its range have each
     // thread's candidate.
@@ -188,7 +191,7 @@ class QuietPairs {
     if (8 * quiet >= n) {
       std::size_t total = 0;
       for (std::size_t count : kept_count) total += count;
-      tested_.resize(total);
+      tested_count_ = total;
     }
   }
 
@@ -207,7 +210,8 @@ class QuietPairs {
   int phase_classify_ = 0, phase_after_ = 0;
   int age_ = kMaxAge;
   std::vector<std::uint8_t> trusted_, next_;  // per grain: its pairs with trusted grains skip
-  std::vector<std::uint32_t> tested_;
+  std::vector<std::uint32_t> tested_;  // the first tested_count_ are the pairs to test
+  std::size_t tested_count_ = 0;
   std::vector<std::vector<std::uint32_t>> kept_;  // classify's scratch: each thread's kept pairs
 };
 
