@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Runs LAMMPS (Debian package lammps, binary lmp) and granjet on the same jet scenes, one core
 # each, one after the other, and prints particle-steps/s and the ratio granjet / LAMMPS.
-# The peer inputs live in ../shared/peers (see its README); scenes: fixed target, t = 0..40
+# The peer inputs live in bench/peers/lammps (see its README); scenes: fixed target, t = 0..40
 # (20,000 steps of dt = 0.002), LAMMPS gran/hooke/history ("gh", its fastest route).
 # Usage: bench/peers/compare_lammps.sh [PEERS_DIR]   (run from the repository root, after
 # scripts/setup.sh). Installs lammps if it is missing. Environment: GRANJET, the granjet binary
 # to measure (default build/app/granjet; e.g. one built for another -march).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-peers=$(cd "${1:-$root/../shared/peers}" && pwd)
+peers=$(cd "${1:-$root/bench/peers/lammps}" && pwd)
 granjet=${GRANJET:-$root/build/app/granjet}
 [ -x "$granjet" ] || { echo "no granjet binary at $granjet: run scripts/setup.sh first" >&2; exit 1; }
 command -v lmp >/dev/null || { apt-get update -qq && apt-get install -y -qq lammps >/dev/null; }
