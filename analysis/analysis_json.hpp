@@ -1,4 +1,4 @@
-// The JSON summary of an analysed ensemble (issue 4): one entry per bin with its centre and every
+// The JSON summary of an analysed ensemble: one entry per bin with its centre and every
 // field as {mean, std, sem, count} (dotted field names nest: "stress.rz" -> "stress": {"rz"}),
 // the global measurements, the distributions and the fits. Values that could not be measured
 // (an empty bin, a single seed's spread) are null.

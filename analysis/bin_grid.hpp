@@ -1,4 +1,4 @@
-// The measurement mesh of spec §6 in the two coordinates every bin geometry shares: a lateral
+// The measurement mesh of model §6 in the two coordinates every bin geometry shares: a lateral
 // coordinate (3D: distance r from the jet axis; 2D: y) and the height h above the height origin
 // (3D: z; 2D: x). Bins are a uniform lateral x height grid; for the strain rates each bin is also
 // cut into half-cells (half a bin in each direction), on a grid that extends half a bin beyond

@@ -1,4 +1,4 @@
-// 2D bin geometry (spec §6): layers above the target line x = 0, each cut along y. Lateral
+// 2D bin geometry (model §6): layers above the target line x = 0, each cut along y. Lateral
 // coordinate y, height h = x - height origin; the local frame is the Cartesian (x, y) one.
 #pragma once
 
@@ -24,7 +24,7 @@ class CartesianLayers {
   static constexpr std::string_view kLateralName = "y";
   static constexpr int kLateral = 1;                 // v_y
   static constexpr int kNormal = 0;                  // v_x
-  static constexpr std::array<int, 2> kShear{0, 1};  // sigma_xy of mu* = -sigma_xy/P (spec §6)
+  static constexpr std::array<int, 2> kShear{0, 1};  // sigma_xy of mu* = -sigma_xy/P (model §6)
   static constexpr bool kCurvilinear = false;
 
   explicit CartesianLayers(const BinSpec& spec)

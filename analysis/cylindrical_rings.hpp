@@ -1,4 +1,4 @@
-// 3D bin geometry (spec §6): rings about the jet axis (the z axis) above the target plane.
+// 3D bin geometry (model §6): rings about the jet axis (the z axis) above the target plane.
 // Lateral coordinate r = sqrt(x^2 + y^2), height h = z - height origin; the local frame is
 // (e_r, e_theta, e_z) at each grain or transfer position.
 #pragma once
@@ -30,7 +30,7 @@ class CylindricalRings {
   static constexpr std::string_view kLateralName = "r";
   static constexpr int kLateral = 0;  // local-frame index of the lateral velocity v_r
   static constexpr int kNormal = 2;   // ... and of the normal one v_z
-  static constexpr std::array<int, 2> kShear{0, 2};  // sigma_rz of mu* = -sigma_rz/P (spec §6)
+  static constexpr std::array<int, 2> kShear{0, 2};  // sigma_rz of mu* = -sigma_rz/P (model §6)
   // A ring's Cartesian tensor differs from its cylindrical one, so both are reported.
   static constexpr bool kCurvilinear = true;
 

@@ -1,4 +1,4 @@
-// The file of an ensemble of seeds (spec §5: error bars are the spread over independent initial
+// The file of an ensemble of seeds (model §5: error bars are the spread over independent initial
 // configurations): an H5MD file without frames, whose metadata are its first member's, that
 // lists the member runs' files and holds /fields and /analysis combined over their stored
 // analyses, with the fields' sidecar beside it.

@@ -1,6 +1,6 @@
 // Field names (a, b run over the local axes "r", "t", "z" in 3D, "x", "y" in 2D):
 //   n, phi, v.a, T_g, T_alpha.a                       number density, packing fraction, mean
-//                                                     velocity, temperatures (spec §6)
+//                                                     velocity, temperatures (model §6)
 //   stress.ab, stress_kinetic.ab, stress_contact.ab   total and parts, local frame [6.1]
 //   stress_xyz.ab (3D)                                total, Cartesian components (every
 //                                                     transfer, whatever wall_contacts says)
@@ -9,7 +9,7 @@
 //                                                     eta over the dilute viscosity
 //   I, sigma_Y (3D); I_s, I_T (2D)                    inertial numbers, extrapolated yield stress
 //   flatness.a                                        <c^4>/<c^2>^2 of the bin's scaled velocities
-// The contact stress split by contact type and direction, and the contacts' geometry (issue 13),
+// The contact stress split by contact type and direction, and the contacts' geometry,
 // all from the same transfers and segment fractions A as stress_contact, in the local frame:
 //   stress_contact_wall.ab     the transfers with a target (wall) grain or the plate (partner
 //                              kPlateId) on either side; the flowing grains' own part is
@@ -217,7 +217,7 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
     t.set("eta_star", bin, eta / kinetic::dilute_viscosity(t_g, mass, d, D));
     if constexpr (D == 3) {
       t.set("I", bin, rate * std::sqrt(mass / (pressure * d)));  // I = D_rz sqrt(m/(P d))
-      // sigma_Y = sigma_rz + eta_kin(phi, T_g) D_rz (spec §6), eta_kin from [5.4]-[5.11].
+      // sigma_Y = sigma_rz + eta_kin(phi, T_g) D_rz (model §6), eta_kin from [5.4]-[5.11].
       t.set(
           "sigma_Y", bin,
           shear_stress + kinetic::kinetic_viscosity(phi, options.restitution, t_g, mass, d) * rate);

@@ -1,4 +1,4 @@
-// Time-averaged fields per bin (spec §6): density, packing fraction, mean velocity, T_g and
+// Time-averaged fields per bin (model §6): density, packing fraction, mean velocity, T_g and
 // T_alpha, kinetic and contact stress [5.1]/[6.1], [C.31]-[C.33], pressure, strain rate, mu*,
 // inertial numbers, viscosity and the extrapolated yield stress. One accumulation code for both
 // geometries (3D rings, 2D layers); the geometry is the coordinate class chosen by D.

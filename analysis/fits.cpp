@@ -167,7 +167,7 @@ double friction_power(double i_s, double mu_s, double b, double beta) {
 }
 
 double scattering_angle_law(double x, double c0, double c1, double c2) {
-  const double c0p = c0 - c2;  // C0' (spec §6)
+  const double c0p = c0 - c2;  // C0' (model §6)
   return std::sqrt(c0p * c0p * (1.0 - std::exp(-c1 * c1 * x * x / (c0p * c0p)))) + c2;
 }
 
@@ -202,7 +202,7 @@ FitResult fit_mu_saturating(std::span<const double> i_s, std::span<const double>
 }
 
 FitResult fit_mu_power(std::span<const double> i_s, std::span<const double> mu) {
-  // The study fits [6.10] "assuming mu_s = 0" (spec §6): two free parameters, b and beta.
+  // The study fits [6.10] "assuming mu_s = 0" (model §6): two free parameters, b and beta.
   const Points d = finite_points(i_s, mu, true);
   const FitModel model = [](double x, const Eigen::VectorXd& p) {
     return friction_power(x, 0.0, p[0], p[1]);

@@ -1,4 +1,4 @@
-// Least-squares fits of the study's laws (spec §6, "Fits") by Eigen's Levenberg-Marquardt
+// Least-squares fits of the study's laws (model §6, "Fits") by Eigen's Levenberg-Marquardt
 // (unsupported module), with parameter standard errors from the Jacobian at the optimum:
 // cov = s^2 (J^T J)^-1, s^2 = SSR/(n - p). The errors are therefore scaled by the scatter of the
 // data about the fit (what scipy calls absolute_sigma=False); no per-point weights are used.
@@ -13,7 +13,7 @@
 namespace granjet::analysis {
 
 struct FitResult {
-  // Which law: "6.2", "6.3", "6.9", "6.10" (spec labels), "mu_linear", "psi0_X"; also the
+  // Which law: "6.2", "6.3", "6.9", "6.10" (model labels), "mu_linear", "psi0_X"; also the
   // fit's name in the JSON and HDF5 output.
   std::string law;
   std::vector<std::string> parameters;  // names, in the order of `value`

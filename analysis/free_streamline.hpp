@@ -7,7 +7,7 @@
 namespace granjet::analysis::free_streamline {
 
 // L/R of the plate whose exit sheets leave at psi0 (radians from the incoming direction,
-// 0 < psi0 < pi/2): (1/pi) * integral_1^a dt / (t chi(t)), a = 1/cos^2 psi0 [spec §7b].
+// 0 < psi0 < pi/2): (1/pi) * integral_1^a dt / (t chi(t)), a = 1/cos^2 psi0 [model §7b].
 double plate_half_width(double psi0);
 
 // The exit angle psi0 (radians) for a plate of half-width L/R > 0: plate_half_width inverted.

@@ -3,7 +3,7 @@
 // the end of the run:
 // - gas: compressibility Z = P/(n T) from the collisional virial,
 //   P V = N T + (1/(D tau)) sum over collisions of r_ij . J_ij (r_ij = r_i - r_j, J_ij the
-//   impulse on i), so Z = 1 + sum r_ij . J_ij / (D N T tau) [spec §6, stress]; the theory it is
+//   impulse on i), so Z = 1 + sum r_ij . J_ij / (D N T tau) [model §6, stress]; the theory it is
 //   compared with is Carnahan-Starling's for hard spheres and Henderson's for hard disks;
 // - hcs: cooling per collision, the least-squares slope of ln T against collisions per grain
 //   (2 collisions / N: each collision counts for both grains), T = sum m v^2 / (D N), compared

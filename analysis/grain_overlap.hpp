@@ -1,4 +1,4 @@
-// How much of one grain lies inside a bin, for the packing fraction phi (spec §6: the exact grain
+// How much of one grain lies inside a bin, for the packing fraction phi (model §6: the exact grain
 // volume or area inside the bin, not centre counting).
 #pragma once
 

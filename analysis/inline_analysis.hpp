@@ -1,4 +1,4 @@
-// The study's measurements (spec §6) taken while a jet runs, so a 20,000-grain run need not
+// The study's measurements (model §6) taken while a jet runs, so a 20,000-grain run need not
 // store its trajectory: samples particles and momentum transfers every
 // analysis.sample_interval, through the Simulator interface only (either backend). A complete
 // run stores them in its file (/fields, /analysis, the fields' sidecar) and summary.

@@ -56,7 +56,7 @@ double henderson(double phi) { return (1.0 + phi * phi / 8.0) / ((1.0 - phi) * (
 double viscosity_star(double phi, double e) {
   const double g = chi(phi);
   const double c = c_star(e);
-  // [5.4]-[5.11] in the spec's order: the collision frequency nu_eta*, the cooling rate zeta*,
+  // [5.4]-[5.11] in the model's order: the collision frequency nu_eta*, the cooling rate zeta*,
   // the kinetic part eta_k*, the bulk-viscosity term gamma*, and eta* itself ([5.6]).
   const double nu_eta = g * (1.0 - (1.0 - e) * (1.0 - e) / 4.0) * (1.0 - c / 64.0);
   const double zeta = 5.0 / 12.0 * g * (1.0 - e * e) * (1.0 + 3.0 * c / 32.0);

@@ -1,5 +1,5 @@
 // Kinetic theory of inelastic hard spheres used as the reference for the measured fields
-// (spec §6, "Kinetic-theory comparisons"). Units: d, m, u0 (grain diameter and mass are
+// (model §6, "Kinetic-theory comparisons"). Units: d, m, u0 (grain diameter and mass are
 // arguments where the formulas need them, so the functions also work in other units).
 #pragma once
 
@@ -13,7 +13,7 @@ constexpr double kPhiClosePacking = 0.64;
 // phi_c above. Infinite at and beyond phi_c.
 double chi(double phi);
 // [5.2] P/(n T_g) = 1 + 2 phi (1+e) chi; the same ratio gives the directional equation of state
-// P_alpha/(n T_alpha) (spec §6).
+// P_alpha/(n T_alpha) (model §6).
 double pressure_ratio(double phi, double e);
 // Directional form of [5.2]: P_alpha = n T_alpha (1 + 2 phi (1+e) chi).
 double directional_pressure(double n, double t_alpha, double phi, double e);

@@ -27,14 +27,14 @@ std::vector<FitResult> scene_fits(const EnsembleTable& bins, int dimension) {
           fit_mu_power(i_s, mu)};
 }
 
-// The position on the jet axis of the layers' h = 0 (spec §6 "Height origin", an assumption of
+// The position on the jet axis of the layers' h = 0 (model §6 "Height origin", an assumption of
 // the reproduction): the target grains' centre plane, or their top surface, which is where the
 // plate's face lies too (core/jet_geometry.hpp).
 double height_origin_position(HeightOrigin origin) {
   return origin == HeightOrigin::kWallSurface ? kTargetSurface : 0.0;
 }
 
-// Grains count as scattered once they "have left the target region" (spec §6), which the
+// Grains count as scattered once they "have left the target region" (model §6), which the
 // study's text does not fix; an assumption of the reproduction: beyond 1.5 R_tar, and at least
 // 1 d beyond the jet's outer edge, so that a jet wider than its target (X = D_tar/D_jet < 1,
 // F4.2) does not count its undisturbed grains at t = 0; inside the region cut (0.9 of it), so
@@ -46,7 +46,7 @@ double scatter_radius_of(const Scene& scene, double target_radius) {
 }
 
 // phi = 0 of the azimuthal distribution, "measured around the jet axis from the short side of
-// the cross section" (spec §6). The rectangle's short sides, the edges of length sqrt(A/l), are
+// the cross section" (model §6). The rectangle's short sides, the edges of length sqrt(A/l), are
 // parallel to y at x = +-sqrt(A l)/2 (JetSpec): phi = 0 points from the axis at the middle of a
 // short side, along +e_x, the long axis. So v2 = <cos 2 phi> > 0 means grains leave mostly
 // towards the short sides (along the long axis), v2 < 0 towards the long sides. (Measuring from
@@ -140,7 +140,7 @@ RunResult RunAnalysis<D>::finish() const {
 
   const VelocityDistribution<D>& vdf = fields_.velocity_distribution();
   r.global = Table(1);
-  // T5.1's flatness under both readings of the study's scaling v_a0 = sqrt(2 T_a/m) (spec §6):
+  // T5.1's flatness under both readings of the study's scaling v_a0 = sqrt(2 T_a/m) (model §6):
   // each bin's own T_a, or one T_a for the whole measured region (fluctuations still about
   // each bin's mean velocity, as in T_g's definition).
   for (int a = 0; a < D; ++a) {
@@ -148,7 +148,7 @@ RunResult RunAnalysis<D>::finish() const {
     r.global.set("flatness_bin." + axis, 0, vdf.flatness(a));
     r.global.set("flatness_region." + axis, 0, vdf.flatness_region(a));
   }
-  // psi0 under both readings (spec §6, [4.3]); psi0 and psi0_window are analysis.psi0's.
+  // psi0 under both readings (model §6, [4.3]); psi0 and psi0_window are analysis.psi0's.
   const double slack = 0.5 * config_.sample_interval;  // as in_window
   const double t0 = config_.window_start - slack, t1 = config_.window_end + slack;
   const bool momentum = config_.psi0_reading == Psi0Reading::kMomentum;

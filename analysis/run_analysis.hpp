@@ -1,4 +1,4 @@
-// The study's measurements of one run (spec §6), fed sample by sample from the run loop or from
+// The study's measurements of one run (model §6), fed sample by sample from the run loop or from
 // stored frames, and their combination over an ensemble of seeds with the scene's fits.
 //
 //   RunAnalysis<D> analysis(AnalysisConfig::for_scene(scene));  // + the [analysis] keys
@@ -33,7 +33,7 @@ namespace granjet::analysis {
 
 // The scene's [analysis] section.
 struct AnalysisConfig {
-  double window_start = 50.0;  // time average over window_start <= t <= window_end (spec §5)
+  double window_start = 50.0;  // time average over window_start <= t <= window_end (model §5)
   double window_end = 100.0;
   double sample_interval = 0.5;
   BinSpec bins;
@@ -44,14 +44,14 @@ struct AnalysisConfig {
   // phi = 0 of the azimuthal distribution (3D): towards the middle of a rectangular jet's short
   // side, e_x (for_scene).
   double reference_azimuth = 0.0;
-  // The exit angle of an ideal fluid jet on the same plate (spec §7b), for 2D plate targets;
+  // The exit angle of an ideal fluid jet on the same plate (model §7b), for 2D plate targets;
   // NaN otherwise.
   double free_streamline_psi0 = std::numeric_limits<double>::quiet_NaN();
   int vdf_bins = 48;  // histogram of scaled velocities over [-vdf_range, vdf_range]
   double vdf_range = 6.0;
   int azimuth_bins = 36;
 
-  // The mesh and window of the scene's [analysis] section (the study's, spec §5-§6, in the
+  // The mesh and window of the scene's [analysis] section (the study's, model §5-§6, in the
   // shipped scenes: 3D 5 rings of width R_tar/5 in a 5 d layer, window 50..100; 2D layers
   // 0..5 d and 5..10 d cut into 10 bins across -R_tar..R_tar, window 180..300).
   // R_tar = wall.diameter/2; heights from analysis.height_origin (the target grains' centre

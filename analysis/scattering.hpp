@@ -1,4 +1,4 @@
-// Where the jet goes after impact (spec §6): the scattering angle psi0 and, in 3D, the azimuthal
+// Where the jet goes after impact (model §6): the scattering angle psi0 and, in 3D, the azimuthal
 // distribution of the scattered grains and its anisotropy v2. A grain counts as scattered the
 // first time a snapshot finds it farther than `radius` from the jet axis (it has left the target
 // region); its velocity and position at that moment are recorded once, before the run's region
@@ -55,7 +55,7 @@ class ScatteringMeasurement {
     return momentum_scattering_angle<D>(velocity_, mass_, incident_speed_);
   }
   // psi0 of the grains first seen scattered in t0 <= t <= t1: the steady flow's, without the
-  // first impact's splash (the exact benchmark of spec §7b is a steady solution).
+  // first impact's splash (the exact benchmark of model §7b is a steady solution).
   double psi0_between(double t0, double t1) const;
   double psi0_momentum_between(double t0, double t1) const;
   double v2() const { return anisotropy_v2(azimuth_); }

@@ -1,4 +1,4 @@
-// Shear strain rate per bin from half-bin differences (spec §6): D = (dv_lat/dh + dv_h/dlat)/2,
+// Shear strain rate per bin from half-bin differences (model §6): D = (dv_lat/dh + dv_h/dlat)/2,
 // i.e. D_rz = (dv_r/dz + dv_z/dr)/2 in 3D and D_xy = (dv_y/dx + dv_x/dy)/2 in 2D.
 //  - normal derivative: the upper and lower halves of the bin;
 //  - lateral derivative: the two bins shifted by half a bin whose centres are the bin's edges.

@@ -1,4 +1,4 @@
-// Per-component velocity distributions of the grains in the measurement bins (spec §6): each
+// Per-component velocity distributions of the grains in the measurement bins (model §6): each
 // grain's fluctuation u = v - (mean velocity of its bin), as in T_g, scaled to unit variance;
 // flatness <c^4>/<c^2>^2 (Gaussian 3, exponential 6). The local-frame velocities of the window
 // are kept, so the means and deviations are those of the whole window, as for T_alpha.

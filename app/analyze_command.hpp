@@ -1,4 +1,4 @@
-// `granjet analyze run.h5 [--window t0:t1] [--summary out.json]`: the measurements of spec §6
+// `granjet analyze run.h5 [--window t0:t1] [--summary out.json]`: the measurements of model §6
 // from the frames stored in a run file. Stored frames hold no momentum transfers, so the
 // contact stress (and what is built on it: P, mu*, I, eta) is left out (NaN); inline analysis
 // during `granjet run` measures everything.

@@ -170,7 +170,7 @@ CampaignFile parse_campaign(std::istream& in, const std::filesystem::path& sourc
     }
     if (g.scene.empty()) throw InputError("[" + name + "] scene", "missing: which scene file?");
     if (g.results.empty())
-      throw InputError("[" + name + "] results", "missing: which result ids (spec §7)?");
+      throw InputError("[" + name + "] results", "missing: which result ids (docs/model.md §7)?");
     g.backend = d.backend;
     g.seeds = d.seeds;
     g.quick_fraction = d.quick_fraction;

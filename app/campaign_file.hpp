@@ -8,7 +8,7 @@
 //   quick_fraction = 0.1            # --quick: run.t_end and the analysis window times this
 //
 //   [rheology3d]                    # a group: letters, digits, _ and -
-//   results = F5.3, F5.5, F5.7      # the result ids (spec §7) it serves
+//   results = F5.3, F5.5, F5.7      # the result ids (model §7) it serves
 //   scene = ../scenes/jet3d.ini     # relative to the campaign file
 //   contact.friction = 0, 0.2       # a scene key with several values is swept;
 //   jet.phi_tilde = 0.3, 0.5, 0.9   # several swept keys make their product

@@ -60,7 +60,7 @@ resume options (a run's .partial goes on from its last checkpoint, run.checkpoin
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
-campaign options (campaign files: see campaigns/thesis.ini and the README):
+campaign options (campaign files: see campaigns/thesis.ini and docs/campaigns.md):
   --out DIR         where the runs go (default out/<FILE's stem>, with --quick
                     out/<FILE's stem>-quick): DIR/GROUP/POINT.seedN.h5
                     (+ .json summary, .ini resolved scene, .log), the ensembles

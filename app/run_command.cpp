@@ -301,7 +301,7 @@ int run_scene(const Scene& requested, const RunOptions& options,
 }  // namespace
 
 // The same scene once per seed, then the analysis combined over the seeds from the run files
-// (spec §5: error bars are the spread over independent initial configurations).
+// (model §5: error bars are the spread over independent initial configurations).
 template <int D>
 int run_ensemble(const Scene& scene, const RunOptions& options,
                  const std::filesystem::path& out_file, std::ostream& out) {

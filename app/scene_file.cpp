@@ -304,7 +304,7 @@ const std::vector<Key>& keys() {
     k.push_back(real_key("gas.sample_interval", "sim time between temperature samples",
                          FIELD(gas.sample_interval), kPositive));
     k.push_back(choice_key<RestitutionLaw>(
-        "ed.restitution_law", "event_driven restitution law (spec §8)", FIELD(ed.restitution_law),
+        "ed.restitution_law", "event_driven restitution law (docs/model.md §8)", FIELD(ed.restitution_law),
         {{"constant", RestitutionLaw::kConstant},
          {"velocity_dependent", RestitutionLaw::kVelocityDependent},
          {"tc_model", RestitutionLaw::kTcModel}}));
@@ -328,7 +328,7 @@ const std::vector<Key>& keys() {
         FIELD(output.unit_labels),
         {{"mdanalysis", UnitLabels::kMdAnalysis}, {"reduced", UnitLabels::kReduced}}));
     k.push_back(choice_key<bool>("analysis.enabled",
-                                 "measure the fields of spec §6 during jet runs",
+                                 "measure the fields of docs/model.md §6 during jet runs",
                                  FIELD(analysis.enabled), {{"true", true}, {"false", false}}));
     k.push_back(real_key("analysis.window_start", "start of the time average",
                          FIELD(analysis.window_start), kNonNegative));

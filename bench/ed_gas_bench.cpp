@@ -1,5 +1,5 @@
 // Event-driven collisions per second (Google Benchmark; collisions only, not cell crossings):
-// the elastic 3D gas of N = 10,976 spheres at phi = 0.3 and 0.45 (the reference points;
+// the elastic 3D gas of N = 10,976 spheres at phi = 0.3 and 0.45 (the reference points;
 // the backend's choice of search, and the cells alone to show what the neighbour lists buy) and
 // the 2D jet after impact. The scene is built and equilibrated outside the timed loop.
 #include <benchmark/benchmark.h>

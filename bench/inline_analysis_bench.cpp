@@ -1,4 +1,4 @@
-// The inline analysis' share of a jet run (issue 5 items 1, 5): the shipped jets after impact,
+// The inline analysis' share of a jet run: the shipped jets after impact,
 // stepped one analysis.sample_interval at a time with (arg 1) and without (arg 0) the sample
 // taken at its end — binned fields, stress from the momentum transfers. particle-steps/s; the
 // ratio of the two is what the analysis costs.

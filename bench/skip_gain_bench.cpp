@@ -1,4 +1,4 @@
-// What the compile-time skips buy (issue 5 item 5): the same physics, jet2d monodisperse and
+// What the compile-time skips buy: the same physics, jet2d monodisperse and
 // frictionless after impact (fixed target), stepped by the instantiation the factory picks and
 // by ones that skip less — contact history and rotation kept (mu_p = 0, so the tangential force
 // stays zero), per-grain radius lookups kept, and the 2D jet run by the 3D code in the plane

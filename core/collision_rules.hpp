@@ -33,7 +33,7 @@ void collide_inverse(const VecT& k, VecT& v1, VecT& v2, double inv_m1, double in
 }
 
 // Kinetic energy lost in a direct collision: (1 - e^2)/2 mu (k.v12)^2, which is
-// (1 - e^2)/4 m (k.v12)^2 for equal masses [spec §1].
+// (1 - e^2)/4 m (k.v12)^2 for equal masses [model §1].
 template <class VecT>
 double collision_energy_loss(const VecT& k, const VecT& v1, const VecT& v2, double inv_m1,
                              double inv_m2, double e) {

@@ -16,7 +16,7 @@ struct Dim<2> {
   static constexpr int kDim = 2;
   using Vec = Eigen::Vector2d;
   using Spin = double;  // angular velocity about the out-of-plane axis
-  // Moment of inertia of a solid disk: I = 1/2 m R^2 (spec §2).
+  // Moment of inertia of a solid disk: I = 1/2 m R^2 (model §2).
   static constexpr double kInertiaFactor = 0.5;
   static double volume(double radius) { return std::numbers::pi * radius * radius; }
   static Spin zero_spin() { return 0.0; }
@@ -31,7 +31,7 @@ struct Dim<3> {
   static constexpr int kDim = 3;
   using Vec = Eigen::Vector3d;
   using Spin = Eigen::Vector3d;
-  // Moment of inertia of a solid sphere: I = 2/5 m R^2 (spec §2).
+  // Moment of inertia of a solid sphere: I = 2/5 m R^2 (model §2).
   static constexpr double kInertiaFactor = 0.4;
   static double volume(double radius) {
     return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;

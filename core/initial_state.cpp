@@ -26,7 +26,7 @@ bool is_complete(const std::vector<T>& sites, std::int64_t n) {
   return static_cast<std::int64_t>(sites.size()) == n;
 }
 
-// Whether (x, y) lies in the 3D jet's cross section [spec §5]: the cylinder of diameter D_jet,
+// Whether (x, y) lies in the 3D jet's cross section [model §5]: the cylinder of diameter D_jet,
 // or the rectangle of the anisotropy runs, long side along x, short side along y (JetSpec).
 bool in_cross_section(const JetSpec& jet, double x, double y) {
   constexpr double kSlack = 1e-9;  // sites on the border belong to the jet
@@ -38,7 +38,7 @@ bool in_cross_section(const JetSpec& jet, double x, double y) {
 }
 
 // Jet lattice sites come layer by layer away from the target; each survives the random removal
-// with probability phi~0 [spec §5], and the first N survivors make the jet.
+// with probability phi~0 [model §5], and the first N survivors make the jet.
 // 3D: fcc with nearest-neighbour distance `spacing`, cut to the cross section.
 std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) {
   const double a = std::sqrt(2.0) * jet.spacing;  // cube edge
@@ -86,7 +86,7 @@ std::vector<Vec<2>> jet_sites_2d(const JetSpec& jet, double front, Random& rng) 
   return sites;
 }
 
-// Target grains [spec §4]: one layer covering the disk of diameter D_tar in the plane z = 0
+// Target grains [model §4]: one layer covering the disk of diameter D_tar in the plane z = 0
 // (3D), or a row covering |y| <= R_tar on x = 0 (2D); neighbours wall.spacing apart (touching by
 // default), on a hexagonal or square lattice (3D).
 std::vector<Vec<3>> wall_sites_3d(const WallSpec& wall) {

@@ -1,4 +1,4 @@
-// Builds the initial grains of a scene [spec §4-§5]: the jet lattice with random site removal,
+// Builds the initial grains of a scene [model §4-§5]: the jet lattice with random site removal,
 // the target wall layer, the two grains of the binary scene, or a periodic gas.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The scene as plain data: everything a run needs, in the units of the spec (d, m, u0).
+// The scene as plain data: everything a run needs, in the units of the model (d, m, u0).
 // Parsing lives in app/ (scene_file); building the initial grains in core/initial_state.
 #pragma once
 
@@ -12,37 +12,37 @@ namespace granjet {
 // kGas and kHcs are periodic boxes of unit grains (elastic equilibrium gas, homogeneous cooling).
 enum class SceneKind { kJet, kBinary, kGas, kHcs };
 enum class IntegratorKind { kAdamsBashforth2, kVelocityVerlet };
-// The target: tethered or fixed wall grains (spec §4), or a flat immovable plate in their front
+// The target: tethered or fixed wall grains (model §4), or a flat immovable plate in their front
 // face (event-driven backend).
 enum class WallKind { kTethered, kFixed, kPlate };
 // How the 3D target grains tile their disk: the study says only "one layer of DEM particles ...
-// a bumpy wall" (spec §4), so the lattice is an assumption (hexagonal, the densest, by default).
+// a bumpy wall" (model §4), so the lattice is an assumption (hexagonal, the densest, by default).
 enum class WallLattice { kHexagonal, kSquare };
 enum class Dispersity { kMono, kBi };
 // The 3D jet's cross section: the study's cylinder, or the rectangle of its anisotropy runs.
 enum class JetShape { kCylinder, kRectangle };
-// Where the heights of the measuring layers start (spec §6 "Height origin", which the study's
+// Where the heights of the measuring layers start (model §6 "Height origin", which the study's
 // text leaves open): the plane of the target grains' centres (z = 0 in 3D, x = 0 in 2D; the
 // literal reading of "from the wall z = 0") or their top surface, d/2 above it. With a plate
 // target (no grains; its face is where their top surface would be, core/plate_face.hpp) these
 // are the plane d/2 behind the face and the face itself.
 enum class HeightOrigin { kWallCentres, kWallSurface };
-// How psi0 is measured (spec §6 and [4.3]; the study does not say): the polar angle of the mean
+// How psi0 is measured (model §6 and [4.3]; the study does not say): the polar angle of the mean
 // departure direction of the scattered grains, or the angle whose 1 - cos psi0 is the target's
 // impulse over the incident momentum, sum m (v_out + u0 e_in) . e_jet / sum m u0.
 enum class Psi0Reading { kDeparture, kMomentum };
 // Whether the contact stress of the fields counts the transfers between flowing grains and
 // target grains (the study sums "over the particles located at r" and leaves this open).
 enum class WallContacts { kInclude, kExclude };
-// Restitution laws of the event-driven backend [spec §8].
+// Restitution laws of the event-driven backend [model §8].
 enum class RestitutionLaw { kConstant, kVelocityDependent, kTcModel };
-// The soft DEM's contact law: the study's linear spring-dashpot (spec §2) or Hertz-Mindlin with
+// The soft DEM's contact law: the study's linear spring-dashpot (model §2) or Hertz-Mindlin with
 // Tsuji damping (soft_dem/hertz_mindlin.hpp, 3D), both from the same (e, t_c).
 enum class ContactModel { kLinear, kHertz };
 
 struct ContactSpec {
   ContactModel model = ContactModel::kLinear;
-  double restitution = 0.75;   // e, binary restitution (spec §2)
+  double restitution = 0.75;   // e, binary restitution (model §2)
   double contact_time = 0.1;   // t_c in d/u0
   double friction = 0.2;       // mu_p
   double spring_ratio = 0.2;   // k_t / k_n
@@ -55,7 +55,7 @@ struct ContactSpec {
 
 struct RunSpec {
   double t_end = 100.0;
-  double dt = 0.0;  // 0: the study's dt = 0.02 t_c [spec §3]
+  double dt = 0.0;  // 0: the study's dt = 0.02 t_c [model §3]
   IntegratorKind integrator = IntegratorKind::kAdamsBashforth2;
   std::uint64_t seed = 1;
   double skin = 0.3;         // Verlet skin in d
@@ -69,7 +69,7 @@ struct RunSpec {
 
 struct JetSpec {
   double diameter = 10.0;  // D_jet (3D) or strip width 2 R_jet (2D)
-  double phi_tilde = 0.9;  // fraction of lattice sites kept [spec §5]
+  double phi_tilde = 0.9;  // fraction of lattice sites kept [model §5]
   std::int64_t grains = 20000;
   double spacing = 1.0;  // lattice nearest-neighbour distance (fcc 1.0, 2D triangular 1.1)
   Dispersity dispersity = Dispersity::kMono;
@@ -77,7 +77,7 @@ struct JetSpec {
   double speed = 1.0;           // u0
   double gap = 1.0;             // surface gap between the jet front and the target grains
   bool mass_by_volume = false;  // false: every grain has mass m (the study's convention)
-  // Anisotropy runs (spec §5, F4.3; 3D only): a rectangle of area A = `area` (d^2) and aspect
+  // Anisotropy runs (model §5, F4.3; 3D only): a rectangle of area A = `area` (d^2) and aspect
   // ratio l = `aspect_ratio` >= 1, long side sqrt(A l) along x, short side sqrt(A/l) along y,
   // eccentricity (l^2 - 1)/(l^2 + 1). `diameter` is then unused.
   JetShape shape = JetShape::kCylinder;
@@ -120,7 +120,7 @@ struct RegionSpec {
   double below = 10.0;
 };
 
-// Periodic gas scenes [spec §5]: gas.grains unit grains (d = m = 1) at packing fraction gas.phi,
+// Periodic gas scenes [model §5]: gas.grains unit grains (d = m = 1) at packing fraction gas.phi,
 // started on a lattice with Maxwellian velocities of temperature gas.temperature.
 struct GasSpec {
   double phi = 0.3;
@@ -130,7 +130,7 @@ struct GasSpec {
   double sample_interval = 0.1;  // sim time between temperature samples (cooling)
 };
 
-// The event-driven backend [spec §8]. velocity_dependent: e(v_n) = 1 - (1 - e0)(v_n/v0)^(3/4)
+// The event-driven backend [model §8]. velocity_dependent: e(v_n) = 1 - (1 - e0)(v_n/v0)^(3/4)
 // below v0 and e0 = contact.restitution above; tc_model: elastic when either grain collided less
 // than tc ago.
 struct EdSpec {
@@ -141,7 +141,7 @@ struct EdSpec {
   double tc = 0.1;  // the soft contact time t_c of the study, the natural choice
 };
 
-// The measurements of spec §6, taken inline during a jet run. Defaults: the 3D study (5 rings
+// The measurements of model §6, taken inline during a jet run. Defaults: the 3D study (5 rings
 // of width R_tar/5 in one 5 d layer, window 50..100); scenes/jet2d.ini sets the 2D study's.
 struct AnalysisSpec {
   bool enabled = true;

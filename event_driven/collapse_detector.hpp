@@ -1,4 +1,4 @@
-// Inelastic collapse [spec §8]: with a constant e < 1 a group of grains can collide infinitely
+// Inelastic collapse [model §8]: with a constant e < 1 a group of grains can collide infinitely
 // often in a finite time, so the event clock stalls while the collision count explodes. A grain
 // that collides kCollisions times within kSpan free-flight times (smallest diameter / rms speed)
 // is taken as collapsing: no flow of hard grains comes near that rate, and a collapsing group

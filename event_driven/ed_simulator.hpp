@@ -1,4 +1,4 @@
-// The event-driven backend [spec §8]: inelastic hard disks (2D) or spheres (3D), polydisperse,
+// The event-driven backend [model §8]: inelastic hard disks (2D) or spheres (3D), polydisperse,
 // in free flight between binary collisions [2.1]-[2.2], with fixed (infinite-mass) wall grains
 // or a flat target plate (event_driven/plate.hpp), periodic boxes for the gas scenes, and the
 // soft backend's removal region for the jets.

@@ -1,4 +1,4 @@
-// The event calendar [spec §8]: per grain the time of its earliest event, popped in the order of
+// The event calendar [model §8]: per grain the time of its earliest event, popped in the order of
 // (time, grain) so that simultaneous events always pop in the same order. What the event is
 // lives with the simulator; an entry only says when and whose. Events whose partner has changed
 // since the prediction are discarded lazily by the simulator (per-grain event counters), so the

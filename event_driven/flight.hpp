@@ -1,4 +1,4 @@
-// Free flight between collisions [spec §8] and the prediction of a pair's next contact. No force
+// Free flight between collisions [model §8] and the prediction of a pair's next contact. No force
 // acts between events, so a grain's state is its position at its own time t and a constant
 // velocity; it is streamed to the present only when an event touches it (DynamO's delayed
 // states).

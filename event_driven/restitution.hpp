@@ -1,4 +1,4 @@
-// The restitution coefficient of one collision, by the law chosen in the scene [spec §8]:
+// The restitution coefficient of one collision, by the law chosen in the scene [model §8]:
 // - constant: e0 = contact.restitution;
 // - velocity_dependent (Goldman et al., Bizon et al. 1998): e(v_n) = 1 - (1 - e0)(v_n/v0)^(3/4)
 //   for v_n < v0, e0 above; slow collisions are nearly elastic, which prevents inelastic

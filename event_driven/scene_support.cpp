@@ -26,7 +26,7 @@ SceneSupport scene_support(const Scene& scene) {
     hard.wall.kind = WallKind::kFixed;
     support.adaptations.push_back({"wall.kind", "tethered", "fixed",
                                    "hard grains have no springs: the tethered target becomes "
-                                   "fixed wall grains, spec §4"});
+                                   "fixed wall grains, docs/model.md §4"});
   }
   if (scene.kind == SceneKind::kJet && scene.jet.spacing < kMinJetSpacing) {
     hard.jet.spacing = kMinJetSpacing;

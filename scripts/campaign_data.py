@@ -377,7 +377,7 @@ def frame_temperature(grains, frame, target, origin, height, dy):
     if inside.sum() < 2:
         return math.nan
     u = v[inside] - v[inside].mean(axis=0)
-    return float((u ** 2).sum() / (2 * inside.sum()))  # m = 1 (spec §2, equal masses)
+    return float((u ** 2).sum() / (2 * inside.sum()))  # m = 1 (model §2, equal masses)
 
 
 # ---- What ran where, when and with which commit ---------------------------------------------

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of a granjet analysis file (spec §6-§7: F5.3-F5.7, T5.1, F6.3-F6.7).
+"""Figures of a granjet analysis file (model §6-§7: F5.3-F5.7, T5.1, F6.3-F6.7).
 
     /usr/bin/python3 scripts/plot_analysis.py run.h5 [--out DIR] [--restitution E]
 
@@ -9,7 +9,7 @@ stdout, one per line; a figure or panel whose fields are absent or all NaN (e.g.
 stress when only stored frames were analysed) is skipped with a note on stderr. Exit code 2
 when the file cannot be read or holds no analysis.
 
-Units as in the spec: length d, mass m, velocity u0; stresses in m u0^2/d^D. Error bars are
+Units as in the model: length d, mass m, velocity u0; stresses in m u0^2/d^D. Error bars are
 the standard deviation over seeds. Needs Debian's python3-h5py, -matplotlib and -numpy.
 """
 import argparse
@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-# ---- The study's formulas (spec §6); same as analysis/kinetic_theory.cpp and fits.cpp ------
+# ---- The study's formulas (model §6); same as analysis/kinetic_theory.cpp and fits.cpp ------
 PHI_F, PHI_C = 0.49, 0.64  # [5.3] freezing and close packing
 
 
@@ -38,7 +38,7 @@ def chi_5_3(phi):
 
 
 def pressure_ratio_5_2(phi, e):
-    """[5.2] P/(n T_g) = 1 + 2 phi (1+e) chi; also P_alpha/(n T_alpha) (spec §6)."""
+    """[5.2] P/(n T_g) = 1 + 2 phi (1+e) chi; also P_alpha/(n T_alpha) (model §6)."""
     return 1 + 2 * np.asarray(phi) * (1 + e) * chi_5_3(phi)
 
 
@@ -58,7 +58,7 @@ def friction_6_9(i_s, mu_s, mu_max, i_0):
 
 
 def friction_6_10(i_s, b, beta):
-    """[6.10] mu* = mu_s + b I_s^beta with mu_s = 0, as the study fits it (spec §6)."""
+    """[6.10] mu* = mu_s + b I_s^beta with mu_s = 0, as the study fits it (model §6)."""
     return b * np.asarray(i_s) ** beta
 
 
@@ -316,7 +316,7 @@ def plot_eos(a, restitution, out):
             errorbar(right, phi[0], field[0], xerr=phi[1], yerr=field[1], positive=True,
                      marker=MARKERS[j], label=f"$\\alpha = {tex(ax_name)}$")
     for ax in (left, right):
-        if a.dim == 3:  # [5.2] is the hard-sphere law (spec §6, kinetic theory in 3D)
+        if a.dim == 3:  # [5.2] is the hard-sphere law (model §6, kinetic theory in 3D)
             ax.plot(grid, pressure_ratio_5_2(grid, e), "k-", lw=1,
                     label=f"[5.2]+[5.3], e = {e:.3g} ({source})")
             ax.set(yscale="log", xlim=(0, phi_max))

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figure FE.1 (spec §7) from the stability test's output: T_g(t) in layer (a), -dy < y < 0,
+"""Figure FE.1 (model §7) from the stability test's output: T_g(t) in layer (a), -dy < y < 0,
 of the 2D jet at mu_p = 1.0 for several contact times t_c.
 
     GRANJET_STABILITY_FE1_FULL=1 build/tests/granjet_stability_tests --gtest_filter="Fe1*" > fe1.log

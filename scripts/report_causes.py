@@ -1,4 +1,4 @@
-"""The 'Causes' section of docs/reproduction.md (issue 13 item 4): where the 3D inner ring's
+"""The 'Causes' section of docs/reproduction.md: where the 3D inner ring's
 shear stress sits and what carries it, and whether the 2D jet's slow region is a jammed solid.
 
 Reads the `causes*` groups of the campaign file: jets whose measuring layers are cut into

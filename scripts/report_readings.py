@@ -75,9 +75,9 @@ def psi0_momentum(ctx, s, rr):
                                     "the study's curve [deg]"],
                   "Ensemble mean ± std over seeds; the study's curve is its fit law with its "
                   "C0, C1, C2 = 1.68, 0.563, 0.554 rad (the same for every e). The scattering "
-                  "group's runs were made by an earlier granjet whose trajectories differ from "
-                  "today's in the last bits (grown by the flow's chaos), so the two departure "
-                  "columns are two ensembles of the same jets.")
+                  "group's runs and these were made by granjet builds whose trajectories differ "
+                  "in the last bits (grown by the flow's chaos), so the two departure columns "
+                  "are two ensembles of the same jets.")
     by_e = {}
     for key in sorted(momentum):
         e, x = key

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The reproduction report (issue 13): every result of the study (spec §7) from a campaign
+"""The reproduction report: every result of the study (model §7) from a campaign
 directory, as docs/reproduction.md, its figures and results.json.
 
     /usr/bin/python3 scripts/reproduction_report.py CAMPAIGN_DIR [--out DOCS_DIR]
@@ -18,7 +18,7 @@ Hand-written prose lives in --text DIR (default docs/reproduction/text/): intro.
 line starting with "Verdict:" (or "**Verdict") on goes below the generated numbers, so the
 verdict follows the evidence. The closing list collects those verdict lines.
 
-Error bars: the standard deviation over seeds (spec §5 "error bars are the spread over them")
+Error bars: the standard deviation over seeds (model §5 "error bars are the spread over them")
 unless a table says otherwise; with one seed (a --quick campaign) there is none ("–").
 Deterministic: the same campaign gives the same Markdown and JSON. Needs Debian's
 python3-h5py, -matplotlib and -numpy (hence /usr/bin/python3); no scipy.
@@ -48,10 +48,10 @@ from report_published import section_published  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 INNER_RING = 0.1  # F5.3: sigma_rz/sigma_zz at r/R_tar = 0.1
-# The study's contact time for each mu_p of the 2D friction study (spec §2).
+# The study's contact time for each mu_p of the 2D friction study (model §2).
 STUDY_CONTACT_TIME = {0.0: 0.1, 0.2: 0.1, 0.4: 0.05, 1.0: 0.01}
 # Spec §2's table of (e, t_c) -> (k_n, eta_n), the values T4.1 reproduces.
-SPEC_T4_1 = {(0.75, 0.1): (4.98e2, 2.88), (0.8, 0.1): (4.96e2, 2.23), (0.9, 0.1): (4.94e2, 1.05),
+STUDY_T4_1 = {(0.75, 0.1): (4.98e2, 2.88), (0.8, 0.1): (4.96e2, 2.23), (0.9, 0.1): (4.94e2, 1.05),
              (0.99, 0.1): (4.93e2, 0.101), (0.75, 0.05): (1.99e3, 5.75)}
 # Where the study's own numbers are: the Published section sets each beside granjet's.
 PUBLISHED = "the study's published numbers stand beside these in section Published"
@@ -313,14 +313,14 @@ def section_t4_1(ctx):
     points = ctx.points_for("T4.1")
     if not describe_groups(s, ctx.campaign, ctx.groups_for("T4.1")):
         return s
-    table = Table("binary", ["e", "t_c", "k_n [3.4]-[3.5]", "eta_n [3.5]", "k_n (spec table)",
-                             "eta_n (spec table)", "measured e", "measured t_c"],
+    table = Table("binary", ["e", "t_c", "k_n [3.4]-[3.5]", "eta_n [3.5]", "k_n (study, T4.1)",
+                             "eta_n (study, T4.1)", "measured e", "measured t_c"],
                   "Binary head-on collision, one run per row (deterministic: no error bar).")
     for p in sorted(points, key=lambda q: (q.number("contact.contact_time"),
                                            q.number("contact.restitution"))):
         e, t_c = p.number("contact.restitution"), p.number("contact.contact_time")
         k_n, eta_n = contact_parameters_3_4_3_5(e, t_c)
-        spec = SPEC_T4_1.get((e, t_c), (None, None))
+        spec = STUDY_T4_1.get((e, t_c), (None, None))
         measured = binary_measured(p)
         table.add(e, t_c, k_n, eta_n, spec[0], spec[1], measured.get("restitution"),
                   measured.get("contact_time"))
@@ -328,7 +328,7 @@ def section_t4_1(ctx):
     worst = max((abs(r["measured e"] - r["e"]) / r["e"] for r in table.json()
                  if r["measured e"] is not None), default=math.nan)
     s.compare(f"largest relative difference of the measured e from the requested: "
-              f"{format_number(worst, 2)}. The spec's table lists no value for t_c = 0.01 "
+              f"{format_number(worst, 2)}. The study's table (T4.1) lists no value for t_c = 0.01 "
               "(the study's printed one does not satisfy [3.4]-[3.5]).")
     return s
 
@@ -825,7 +825,7 @@ def section_t5_2(ctx):
     rings = [k for k, x in enumerate(lateral_positions(rheology[0])[0]) if x > 0.2]
     columns = [ring_columns(rheology[0])[k] for k in rings]
     table = Table("sigma_Y", ["mu_p", "phi~0", "row", *columns],
-                  "sigma_Y = sigma_rz + eta_kin D_rz (spec §6) and sigma_Y/P; ensemble mean ± "
+                  "sigma_Y = sigma_rz + eta_kin D_rz (model §6) and sigma_Y/P; ensemble mean ± "
                   "std over seeds.")
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for p in rheology:
@@ -894,7 +894,7 @@ def section_f6_3(ctx):
     right.set(xlabel="$y/R_{tar}$ (2D), $r/R_{tar}$ (3D)", ylabel=r"$\phi/\phi_{max}$")
     left.legend(fontsize=6)
     s.add_figure(ctx.figures.save(fig, "F6_3_profiles"), "T_g and phi/phi_max across the "
-                 "target; phi_max is the profile's largest bin value (the spec does not define "
+                 "target; phi_max is the profile's largest bin value (the model does not define "
                  "it)")
     for p in sorted(present(points), key=lambda q: q.group.name):
         s.add_table(profile_table(f"profiles_{p.group.name}", p, ("T_g", "phi", "v.x"),
@@ -1060,7 +1060,7 @@ def section_f6_7(ctx):
 
 
 def friction_study_points(ctx, result_id, reference_group):
-    """The points of an id at the study's contact time for their mu_p (spec §2), with the
+    """The points of an id at the study's contact time for their mu_p (model §2), with the
     frictionless reference group's point first."""
     chosen = [p for p in ctx.points_for(result_id) + ctx.campaign.points(reference_group)
               if math.isclose(p.number("contact.contact_time"),
@@ -1088,7 +1088,7 @@ def section_friction_fits(ctx, result_id, title, reference_group, stem, dispersi
     if not describe_groups(s, ctx.campaign, groups):
         return s, []
     contact_times = ", ".join(f"{t:g} at mu_p = {mu:g}" for mu, t in STUDY_CONTACT_TIME.items())
-    s.add(f"Points: each mu_p at the study's contact time (spec §2: t_c = {contact_times}); "
+    s.add(f"Points: each mu_p at the study's contact time (model §2: t_c = {contact_times}); "
           f"[{reference_group}] is the mu_p = 0 reference ({dispersity}).")
     found = present(points)
     s.add(seeds_note(found))
@@ -1158,7 +1158,7 @@ def section_fe1(ctx):
         return s
     found = sorted(present(points), key=lambda q: -q.number("contact.contact_time"))
     s.add(seeds_note(found) + " T_g(t) from the stored frames (every output.interval) inside "
-          "the analysis window; masses m = 1 as the study (spec §2).")
+          "the analysis window; masses m = 1 as the study (model §2).")
     table = Table("bursts", ["t_c", "e", "<T_g>", "std of T_g(t)", "peak T_g",
                              "CV = std/<T_g>"],
                   "Per seed over the window, then mean ± std over seeds.")
@@ -1308,7 +1308,7 @@ def hc_plate(ctx, s, plate):
     table = Table("plate", ["jet", "L/R", "psi0 exact [deg]", "psi0 event-driven [deg]",
                             "psi0 soft DEM [deg]"],
                   "Flat frictionless plate; psi0 of the grains scattered in the analysis window "
-                  "(steady flow); ensemble mean ± std over seeds; exact: spec §7b.")
+                  "(steady flow); ensemble mean ± std over seeds; exact: model §7b.")
     for key in sorted(rows):
         r = rows[key]
         table.add(r["jet"], r["L_over_R"], r["psi0_exact_deg"],
@@ -1318,7 +1318,7 @@ def hc_plate(ctx, s, plate):
     exact = sorted({(r["L_over_R"], r["psi0_exact_deg"]) for r in rows.values()
                     if r["psi0_exact_deg"] is not None})
     if exact:
-        ax.plot(*zip(*exact), "kx:", lw=0.8, label="free streamline (spec §7b) at the runs' L/R")
+        ax.plot(*zip(*exact), "kx:", lw=0.8, label="free streamline (model §7b) at the runs' L/R")
     series = sorted({(r["jet"], b) for r in rows.values()
                      for b in ("event_driven", "soft_dem") if f"psi0_{b}_deg" in r})
     for k, (jet, backend) in enumerate(series):

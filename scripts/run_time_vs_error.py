@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Run time against error, the framework's headline result (issue 5, item 3).
+"""Run time against error, the framework's headline result.
 
     /usr/bin/python3 scripts/run_time_vs_error.py [--granjet build/app/granjet] [--docs docs]
                                                   [--work DIR] [--parts abc] [--quick]
@@ -131,7 +131,7 @@ def plan(quick):
                           binary__gap=_fmt(gap + k / phases * r * 0.1 * speed)), phase=k,
                      part="b", role="binary")
                 for integ, r in pairs for k in range(phases)])
-    # Same target for both backends: ED cannot tether it (spec §4), so the soft runs fix it too.
+    # Same target for both backends: ED cannot tether it (model §4), so the soft runs fix it too.
     common_c = dict(jet["common"], **{"wall.kind": "fixed"}, **quiet_output)
     t_c, r = jet["reference"]
     ref_c = dict(soft(t_c, r, **_kw(common_c)), role="reference")
@@ -745,7 +745,7 @@ def lessons_c(part):
         stiffest = stiff[-1] if stiff else None
         if vd and stiffest:
             gap = abs(level_t(stiffest) - level_t(vd))
-            text += (f" For the hard-core question (spec HC) the event-driven backend answers "
+            text += (f" For the hard-core question (model HC) the event-driven backend answers "
                      f"in {secs(vd['wall'])} s; soft DEM at t_c = {stiffest['t_c']:g} takes "
                      f"{secs(stiffest['wall'])} s and "
                      + (f"comes within the spread of it ({100 * level_t(stiffest):+.0f}% "
@@ -814,7 +814,7 @@ def document(results, meta, path, png):
     lines = [
         "# Run time against error",
         "",
-        "The framework's headline result (issue 5, item 3): what each backend and setting costs "
+        "The framework's headline result: what each backend and setting costs "
         "and how far its answer is from a reference. Regenerate with",
         "",
         "    /usr/bin/python3 scripts/run_time_vs_error.py --granjet build/app/granjet",
@@ -830,9 +830,9 @@ def document(results, meta, path, png):
         f"- every run on one core (soft DEM with `run.threads = 1`), one after the other; wall time = time.perf_counter "
         f"around the `granjet run` process (start-up, set-up, inline analysis and HDF5 output "
         f"included), CPU = the child's user + system time. "
-        + ("The machine was shared with other developers' builds and runs (load average "
-           f"{meta['load'][0]:.1f} before, {meta['load'][1]:.1f} after), so wall times carry "
-           "that noise; where wall and CPU time differ, the machine was busy."
+        + ("The machine was running other jobs (load average "
+           f"{meta['load'][0]:.1f} at the start, {meta['load'][1]:.1f} at the end), so wall times "
+           "carry that noise; where wall and CPU time differ, the machine was busy."
            if meta.get("shared") else ""),
         f"- the whole command took {meta['total_seconds'] / 60:.1f} minutes "
         f"({meta['total_seconds']:.0f} s)"
@@ -891,7 +891,7 @@ def document(results, meta, path, png):
             f"profiles averaged over 180 <= t < 300 as in the study) with "
             + ", ".join(f"`{k} = {v}`" for k, v in common.items())
             + ": the target is fixed for both backends (the event-driven backend cannot tether "
-              "it, spec §4); the runs' output is the first and last frame and the inline "
+              "it, model §4); the runs' output is the first and last frame and the inline "
               "analysis. Error: the relative L2 distance "
               "||x - x_ref|| / ||x_ref|| of the P and of the T_g profile over both layers' 20 "
               "bins; in brackets the shift sum(x)/sum(x_ref) - 1 (the sign says hotter or "

@@ -7,8 +7,8 @@
 
 namespace granjet::dem {
 
-// All in the spec's units (d, m, u0). The dashpots are rates: the damping force is
-// m * eta * (overlap rate) with m the grain mass unit, whatever the partner [spec §2].
+// All in the model's units (d, m, u0). The dashpots are rates: the damping force is
+// m * eta * (overlap rate) with m the grain mass unit, whatever the partner [model §2].
 struct ContactCoefficients {
   double kn = 0.0;     // normal spring k_n
   double eta_n = 0.0;  // normal dashpot rate

@@ -1,6 +1,6 @@
 // Which listed pairs touched at the last force evaluation, and the tangential history u_t of
 // each (contact laws that keep one, kKeepShear). The history goes on while a pair keeps
-// touching and ends when it parts [spec §2]: from one pass to the next a merge of the two
+// touching and ends when it parts [model §2]: from one pass to the next a merge of the two
 // contact lists carries it; across neighbour rebuilds and checkpoints, where list indices and
 // grain indices change, it travels by grain-id pair.
 #pragma once

@@ -34,7 +34,7 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
   if (scene.has_plate()) plate_.emplace(scene.wall.diameter, law_.against_wall(), p_.size());
   // Lattice neighbours lie within spacing + 2 jitter; the scene checks keep next-nearest sites
   // beyond that. The tethers' dashpots are wall.damping_ratio times the eta_n of [3.5] whatever
-  // the contact law (spec §4 gives them in the linear law's terms).
+  // the contact law (model §4 gives them in the linear law's terms).
   if (tethered_)
     wall_ = TetheredWall<D>(p_, scene.wall.spring,
                             scene.wall.damping_ratio * contact_coefficients(scene.contact).eta_n,
@@ -86,7 +86,7 @@ void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
 
 // Every contact of a scene with e < 1 dissipates, so the kinetic energy can never exceed the
 // initial total: more is the integrator's doing, a step too long for the contacts (dt = 0.5 t_c
-// turns a binary e = 0.75 into 1.59) [spec §3]. Kinetic only, because the elastic energy of a
+// turns a binary e = 0.75 into 1.59) [model §3]. Kinetic only, because the elastic energy of a
 // contact carries the integrator's phase error while it lasts (a contact that starts inside a
 // step already stores 2% of E_0 at dt = 0.1 t_c, though the collision ends with e = 0.736);
 // the kinetic bound holds at every instant, so how often the caller looks does not matter.
@@ -171,7 +171,7 @@ void DemSimulator<D, Law, kMono, Space>::add_travel(double largest_speed2) {
   needs_rebuild_ = !(travel_ <= 0.5 * scene_.run.skin);
 }
 
-// Adams-Bashforth-2, with F(t - dt) = F(t) on the first step [spec §3].
+// Adams-Bashforth-2, with F(t - dt) = F(t) on the first step [model §3].
 template <int D, class Law, bool kMono, class Space>
 auto DemSimulator<D, Law, kMono, Space>::ab2_step() -> Ab2Step<D, kRotation> {
   return {p_.position().data(),

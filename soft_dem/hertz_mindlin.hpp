@@ -20,8 +20,8 @@
 //   the loading path), so the tangential spring energy 1/2 k_t |u_t|^2 is not a potential.
 // The mapping from (e, t_c) is made on the study's reference pair, two unit grains
 // (m_eff = m/2, R_eff = d/4): other sizes enter through R_eff, while the dashpot takes
-// m_eff = m/2 whatever the masses (the linear law's convention, README "Physics
-// conventions"). e gives alpha by Antypov & Elliott's relation (with contact.clamp_normal the
+// m_eff = m/2 whatever the masses (the linear law's convention, docs/model.md
+// §2). e gives alpha by Antypov & Elliott's relation (with contact.clamp_normal the
 // clamped collision is solved for alpha by bisection instead), and E* is chosen so that a
 // head-on collision of the reference pair at relative normal speed u0 = 1 lasts t_c with that
 // damping. The collision

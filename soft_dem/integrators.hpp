@@ -28,12 +28,12 @@ inline double select_bits(std::uint64_t mask, double a, double b) {
                                (std::bit_cast<std::uint64_t>(b) & ~mask));
 }
 
-// Adams-Bashforth-2 for velocities and spins, trapezoid for positions (spec §3), with
+// Adams-Bashforth-2 for velocities and spins, trapezoid for positions (model §3), with
 // F(t - dt) = F(t) on the first step:
 //   [B.21] v(t+dt) = v(t) + dt/(2m) (3 F(t) - F(t-dt))
 //   [B.22] w(t+dt) = w(t) + dt/(2I) (3 M(t) - M(t-dt))
 //   [B.23] x(t+dt) = x(t) + dt/2 (v(t+dt) + v(t))
-// (spec §3 heads these three updates with four labels and does not number them one by one:
+// (model §3 heads these three updates with four labels and does not number them one by one:
 // the labels here follow its order, and [B.24] is matched to none). Raw pointers, taken once
 // per pass: Eigen stores through may-alias vector types, after which a pointer read from a
 // member would have to be read again.

@@ -1,8 +1,8 @@
-// The study's contact law (spec §2): a linear spring-dashpot along the normal [3.1], a
+// The study's contact law (model §2): a linear spring-dashpot along the normal [3.1], a
 // tangential spring-dashpot [3.2] with Coulomb sliding [3.3], coefficients from the scene's
 // (e, t_c) by [3.4] and [3.5] (soft_dem/contact_coefficients.hpp). contact.model = linear.
 //
-// It is also the prototype of a contact law (README, "How to add a contact law"): a class
+// It is also the prototype of a contact law (ARCHITECTURE.md, "A contact law"): a class
 // template Law<D, kFriction>, kFriction meaning "with its tangential part" (the factory,
 // make_dem_simulator, passes true when the scene needs contact history or rotation), with
 //   kNeedsHistory, kNeedsRotation  what the simulator keeps and integrates: the tangential

@@ -1,4 +1,4 @@
-// The tethered target [spec §4]: each wall grain is tied to its initial position and to its
+// The tethered target [model §4]: each wall grain is tied to its initial position and to its
 // neighbouring wall grains (lattice neighbours, those within `bond_range`) by springs k_w (rest
 // length = initial distance) with dashpots eta_w = damping_ratio * eta_n. Bonds are kept by grain
 // id, so reordering is harmless.

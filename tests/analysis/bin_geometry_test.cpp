@@ -1,4 +1,4 @@
-// The measurement mesh (spec §6): bin volumes and areas, half-cells, rotation of tensors to
+// The measurement mesh (model §6): bin volumes and areas, half-cells, rotation of tensors to
 // cylindrical components, grain shares and segment clipping [C.31]-[C.33] in both geometries.
 #include <gtest/gtest.h>
 
@@ -33,7 +33,7 @@ TEST(BinGeometry, RingVolumesAreAnnuliTimesHeightAndSumToTheCylinder) {
     total += rings.bin_volume(k);
   }
   EXPECT_NEAR(total, kPi * 11.0 * 11.0 * 5.0, 1e-10);
-  // Centres r/R_tar = 0.1, 0.3, ..., 0.9 (spec §6).
+  // Centres r/R_tar = 0.1, 0.3, ..., 0.9 (model §6).
   EXPECT_NEAR(0.5 * (g.lateral_edge(2) + g.lateral_edge(3)) / 11.0, 0.5, 1e-15);
 }
 

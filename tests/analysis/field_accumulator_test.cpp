@@ -1,4 +1,4 @@
-// Fields per bin from synthetic data with known answers (spec §6): contact stress of a lattice
+// Fields per bin from synthetic data with known answers (model §6): contact stress of a lattice
 // with known pair forces straddling bin borders [C.31]-[C.33]; kinetic stress of a Maxwellian
 // = n T I; strain rate of a linear shear field; binned mass and volume sum to the totals; the
 // contact stress split by contact type (wall) and direction (normal), fabric and contact density.

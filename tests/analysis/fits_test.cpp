@@ -73,7 +73,7 @@ TEST(Fits, Eq6_9_SaturatingFrictionRecovered) {
   EXPECT_EQ(fit.law, "6.9");
 }
 
-// [6.10] as the study fits it, "assuming mu_s = 0" (spec §6): exactly two parameters, b and
+// [6.10] as the study fits it, "assuming mu_s = 0" (model §6): exactly two parameters, b and
 // beta. Exact data give them back to rounding (the standard errors, s^2 from SSR ~ 0, vanish
 // with it); noisy data within 3 standard errors.
 TEST(Fits, Eq6_10_PowerFrictionWithMuSZeroHasTwoParameters) {

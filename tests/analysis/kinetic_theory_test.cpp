@@ -29,7 +29,7 @@ TEST(KineticTheory, Eq5_2_PressureRatioAndDirectionalForm) {
 }
 
 TEST(KineticTheory, Eq2_55_EffectiveRestitutionIsSpecValue) {
-  // 0.75 - 0.314159 + 0.18 = 0.615841; the spec quotes 0.616.
+  // 0.75 - 0.314159 + 0.18 = 0.615841; the model quotes 0.616.
   EXPECT_NEAR(effective_restitution(0.75, 0.2), 0.616, 5e-4);
   EXPECT_DOUBLE_EQ(effective_restitution(0.75, 0.0), 0.75);
 }

@@ -108,7 +108,7 @@ TEST(HeightOrigin, Spec6_SurfaceOriginOfAPlateIsItsFace) {
   EXPECT_DOUBLE_EQ(centres.height(x), plate.height(x) + 0.5);
 }
 
-// F4.3's v2 (spec §6): phi is measured from the short side of a rectangular jet (long side along
+// F4.3's v2 (model §6): phi is measured from the short side of a rectangular jet (long side along
 // x), so phi = 0 is e_x. Scattered grains evenly spaced in t on an ellipse (A cos t, B sin t)
 // outside the scatter radius have <cos 2 phi> = (1 - k)/(1 + k), k = B/A: +0.25 for k = 0.6
 // (elongated along x, towards the short sides), -0.25 when elongated along y.

@@ -1,4 +1,4 @@
-// psi0 and v2 of synthetic outgoing velocity sets (spec §6), and the scaled velocity
+// psi0 and v2 of synthetic outgoing velocity sets (model §6), and the scaled velocity
 // distributions' flatness (Gaussian 3, exponential 6).
 #include "analysis/scattering.hpp"
 
@@ -183,7 +183,7 @@ std::vector<double> gaussian_quantiles(int n) {
   return q;
 }
 
-// T5.1 under the study's two possible scalings (spec §6): two bins of Gaussian velocities of
+// T5.1 under the study's two possible scalings (model §6): two bins of Gaussian velocities of
 // variances s1 = 1 and s2 = 9 about different means (0.5 and -2), equal in number. Each bin's
 // own T_a makes every bin a unit Gaussian: flatness 3. One T_a for the region scales both by
 // the same deviation, and the equal mixture of the fluctuations (each about its bin's mean) has

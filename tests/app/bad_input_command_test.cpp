@@ -1,5 +1,5 @@
-// Inputs that used to crash, hang, destroy a file or leave an incomplete file under its final
-// name (issue 14): each command now exits 2 naming the key or option, writes nothing and leaves
+// Inputs that could crash, hang, destroy a file or leave an incomplete file under its final
+// name: each command exits 2 naming the key or option, writes nothing and leaves
 // the input as it was, or gives a correct result.
 #include <gtest/gtest.h>
 #include <hdf5.h>

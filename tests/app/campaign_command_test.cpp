@@ -228,7 +228,7 @@ TEST_F(CampaignCommand, ThesisDryRunListsEveryResultOfTheSpecWithItsRunsAndCost)
   std::stringstream s;
   s << in.rdbuf();
   const std::string listing = s.str();
-  // spec §7, every id.
+  // model §7, every id.
   for (const char* id :
        {"T4.1", "F4.2", "F4.3", "F5.3", "F5.4", "F5.5", "F5.6", "T5.1", "F5.7", "T5.2", "F5.9",
         "F6.3", "F6.4", "F6.5", "F6.7", "F6.11-F6.14", "F6.16-F6.18", "FE.1", "HC"}) {

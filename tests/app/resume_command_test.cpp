@@ -1,4 +1,4 @@
-// `granjet resume` (issue 14): a run killed with SIGKILL after a checkpoint and resumed gives
+// `granjet resume`: a run killed with SIGKILL after a checkpoint and resumed gives
 // the straight run's frames, observables, fields, analysis and summary (minus timings), bit for
 // bit; a resume may extend run.t_end and nothing that would make it another run.
 #include <gtest/gtest.h>

@@ -132,7 +132,7 @@ TEST_F(GranjetCommand, BlowUpStopsWithStepAndGrainsAndKeepsAReadablePartialFile)
   EXPECT_GE(summary.frames, 1u);
 }
 
-// CLI habits (issue 15): every subcommand answers --help, the progress rows carry the step and
+// CLI habits: every subcommand answers --help, the progress rows carry the step and
 // the energies, the output is named at start and end, and the H5MD author is the user's.
 TEST_F(GranjetCommand, SubcommandHelpProgressColumnsAndAuthor) {
   for (const std::string command : {"run", "resume", "compare", "campaign", "info", "analyze"}) {

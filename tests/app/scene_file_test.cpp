@@ -110,7 +110,7 @@ void expect_refused(const std::vector<std::string>& overrides, const std::string
   }
 }
 
-// The readings the study leaves open (spec §6, [4.3]): psi0 from the departure directions or the
+// The readings the study leaves open (model §6, [4.3]): psi0 from the departure directions or the
 // momentum balance, the fields' contact stress with or without the target's contacts. Defaults
 // keep the measurement as it was; both survive the resolved INI; anything else is refused.
 TEST(SceneFile, AnalysisReadingsParseRoundTripAndRefuseOthers) {
@@ -147,10 +147,10 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"jet.shape=square"}, "jet.shape", "cylinder | rectangle");
   expect_refused({"jet.aspect_ratio=0.5"}, "jet.aspect_ratio", ">= 1");
   expect_refused({"jet.area=0"}, "jet.area", "> 0");
-  // The rectangle is a 3D cross section (spec §5); the 2D jet is a strip.
+  // The rectangle is a 3D cross section (model §5); the 2D jet is a strip.
   expect_refused({"scene.dimension=2", "jet.shape=rectangle"}, "jet.shape", "3D");
   expect_refused({"jet.grains=2.5"}, "jet.grains", "integer in [1, 1000000000]");
-  // Integers are range-checked before they are narrowed: 2^32 + 2 no longer wraps to 2.
+  // Integers are range-checked before they are narrowed: 2^32 + 2 does not wrap to 2.
   expect_refused({"run.threads=4294967296"}, "run.threads", "in [1, 256]");
   expect_refused({"run.threads=4294967298"}, "run.threads", "in [1, 256]");
   expect_refused({"run.threads=257"}, "run.threads", "in [1, 256]");
@@ -159,7 +159,7 @@ TEST(SceneFile, BadValuesNameTheKeyAndTheAllowedRange) {
   expect_refused({"gas.grains=9223372036854775808"}, "gas.grains", "in [2, 1000000000]");
   expect_refused({"gas.grains=9223372036854775807"}, "gas.grains", "in [2, 1000000000]");
   expect_refused({"run.skin=1e12"}, "run.skin", "(0, 5]");
-  // Target lattices (spec §4 leaves them open): no jitter into overlaps, no ambiguous tether
+  // Target lattices (model §4 leaves them open): no jitter into overlaps, no ambiguous tether
   // neighbours; a spacing below 1 overlaps the grains into a smoother layer, down to 0.5.
   expect_refused({"contact.clamp_normal=yes"}, "contact.clamp_normal", "false | true");
   expect_refused({"wall.lattice=random"}, "wall.lattice", "hexagonal | square");
@@ -215,7 +215,7 @@ TEST(SceneFile, UnknownKeyInFileAndMissingFileAreRefused) {
   EXPECT_THROW(load_scene("/nonexistent/scene.ini", {}), InputError);
 }
 
-// The last of two assignments no longer silently wins: both lines are named.
+// The last of two assignments does not silently win: both lines are named.
 TEST(SceneFile, DuplicateKeyIsRefusedNamingBothLines) {
   std::istringstream in(
       "[scene]\nkind = jet\n[contact]\nrestitution = 0.8\n# e\n"

@@ -1,4 +1,4 @@
-// The backends the conformance tests run on (spec §1 scenes written once, run on both), and
+// The backends the conformance tests run on (model §1 scenes written once, run on both), and
 // what each is held to: the event-driven collision rule is exact up to rounding, the soft
 // contact reproduces e within 0.5% at dt = 0.02 t_c ([3.4], [3.5]).
 #pragma once

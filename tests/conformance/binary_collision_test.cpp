@@ -1,4 +1,4 @@
-// Conformance [spec §1]: the binary head-on collision on both backends, the same test body.
+// Conformance [model §1]: the binary head-on collision on both backends, the same test body.
 // Measured from the trajectory (velocities long before and long after contact, along the line
 // of centres): restitution e, and the energy loss (1 - e^2)/4 m (k.v12)^2 of [2.1]. The soft
 // backend's 0.5% on e propagates to 2 e^2/(1 - e^2) times that on the loss.

@@ -1,4 +1,4 @@
-// Checkpoints (issue 14): a simulator built anew from the scene that restores a checkpoint goes
+// Checkpoints: a simulator built anew from the scene that restores a checkpoint goes
 // on bit-identically to the one that wrote it, on both backends, both integrators, friction on
 // and off, tethered, fixed and plate targets, a periodic gas, 1 and 2 threads, both soft contact
 // laws, and a resume of a resume.

@@ -1,5 +1,5 @@
 // Conformance, stiff limit: the soft DEM approaches the hard-sphere (event-driven) result as its
-// contact time shrinks. Homogeneous cooling [spec §5], e = 0.9, dilute: the Haff cooling
+// contact time shrinks. Homogeneous cooling [model §5], e = 0.9, dilute: the Haff cooling
 // rate -d ln T/dt at T0 (analysis/gas_observer) on both backends from the same start. The soft
 // grains' finite t_c lowers the rate: measured here soft/hard = 0.938 (2D) and 0.935 (3D) at
 // t_c = 0.1, 0.993 and 0.991 at t_c = 0.01; the statistical spread of one run is 1-1.5%

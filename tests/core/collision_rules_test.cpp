@@ -64,7 +64,7 @@ TYPED_TEST(CollisionRules, EnergyLossIsOneMinusESquaredQuarterMVnSquared) {
   std::mt19937_64 rng(kSeed + 1);
   for (int t = 0; t < kTrials; ++t) {
     RandomPair<VecT> c(rng);
-    c.inv_m1 = c.inv_m2 = 1.0;  // equal masses m = 1: loss = (1-e^2)/4 m (k.v12)^2 [spec §1]
+    c.inv_m1 = c.inv_m2 = 1.0;  // equal masses m = 1: loss = (1-e^2)/4 m (k.v12)^2 [model §1]
     VecT a = c.v1, b = c.v2;
     collide(c.k, a, b, 1.0, 1.0, c.e);
     const double before = 0.5 * (c.v1.squaredNorm() + c.v2.squaredNorm());

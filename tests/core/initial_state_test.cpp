@@ -1,4 +1,4 @@
-// The jet and target built from the shipped scene parameters [spec §4-§5].
+// The jet and target built from the shipped scene parameters [model §4-§5].
 #include "core/initial_state.hpp"
 
 #include <gtest/gtest.h>
@@ -201,7 +201,7 @@ TEST(InitialState, RectangularJetLayersHoldAreaTimesLatticeDensity) {
     }
 }
 
-// Wall lattices (spec §4 leaves the layer's arrangement open): the target grains' positions.
+// Wall lattices (model §4 leaves the layer's arrangement open): the target grains' positions.
 template <int D>
 std::vector<Vec<D>> wall_positions(const Particles<D>& p) {
   std::vector<Vec<D>> x;

@@ -1,4 +1,4 @@
-// The event-driven backend through the granjet command, end to end [spec §8]: the jets on the
+// The event-driven backend through the granjet command, end to end [model §8]: the jets on the
 // same scene files, the periodic gas scenes and their measured quantities, bit-identical reruns,
 // inelastic collapse as exit code 3, bad keys as exit code 2, and `granjet compare`.
 #include <gtest/gtest.h>

@@ -39,7 +39,7 @@ class GasStart : public ::testing::Test {};
 using Dims = ::testing::Types<Dim<2>, Dim<3>>;
 TYPED_TEST_SUITE(GasStart, Dims);
 
-// [spec §5]: the packing fraction exactly, zero momentum, exactly the temperature, no overlap,
+// [model §5]: the packing fraction exactly, zero momentum, exactly the temperature, no overlap,
 // all inside the box; the seed picks the vacancies and velocities.
 TYPED_TEST(GasStart, LatticeAtPhiWithZeroMomentumAndTheTemperatureNoOverlap) {
   constexpr int D = TypeParam::kDim;

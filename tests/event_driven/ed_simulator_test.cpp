@@ -1,4 +1,4 @@
-// The event-driven simulator on small hand-built cases [spec §1, §8]: collisions with fixed
+// The event-driven simulator on small hand-built cases [model §1, §8]: collisions with fixed
 // grains and with the flat target plate, touching rows, overlapping and grazing pairs,
 // determinism, the impulses handed to the analysis, and inelastic collapse; and jets on the
 // plate, whose force must carry the jet's momentum flux. The hand-built runs verify contact at
@@ -394,7 +394,7 @@ TEST(EdPlateJet, Jet3dForceOnThePlateIsTheMomentumFlux) {
   expect_jet_force_is_the_momentum_flux<3>(1500, 60.0);
 }
 
-// Constant e = 0.5 in a dense gas collapses [spec §8]: the run stops with a message that names
+// Constant e = 0.5 in a dense gas collapses [model §8]: the run stops with a message that names
 // grains and the remedy. The velocity-dependent law runs on through the same time. (In 2D: a
 // dense 3D gas at e = 0.5 does not collapse within 3000 collisions per grain, it cools by some
 // 30 decades instead; in 3D only e = 0.3 collapses soon, docs/stability.md (d).)

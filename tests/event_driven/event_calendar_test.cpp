@@ -1,4 +1,4 @@
-// The event calendar against a sort oracle [spec §8]: random schedules, reschedules (earlier and
+// The event calendar against a sort oracle [model §8]: random schedules, reschedules (earlier and
 // later) and cancellations; every pop must be the earliest (time, grain) of a plain reference
 // table, ties included. The seed is printed so a failure can be replayed.
 #include "event_driven/event_calendar.hpp"

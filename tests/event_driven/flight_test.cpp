@@ -1,4 +1,4 @@
-// Pair prediction [spec §8]: the contact time of two grains in free flight, robust at grazing
+// Pair prediction [model §8]: the contact time of two grains in free flight, robust at grazing
 // incidence and for touching or overlapping grains.
 #include "event_driven/flight.hpp"
 

@@ -1,4 +1,4 @@
-// Periodic hard-sphere gases on the event-driven backend [spec §5, §6], measured by the same
+// Periodic hard-sphere gases on the event-driven backend [model §5, §6], measured by the same
 // GasObserver as `granjet run`, with contact checked at every collision and overlaps at every
 // sample (Verification::kOn):
 // - elastic gas: Z = P/(n T) from the collisional virial within 1.5% of Carnahan-Starling (3D)
@@ -8,7 +8,7 @@
 // - homogeneous cooling, e = 0.9, dilute: d ln T / d(collisions per grain) within 2% of
 //   -(1-e^2)/D (1 + 3 a2/16)/(1 - a2/16), a2 from [2.37] and its 2D analogue.
 // This file builds twice: the default suite runs small systems, the `long` label
-// (GRANJET_LONG_TESTS) the sizes (N ~ 10^4, 10^6 collisions and more). The tolerances
+// (GRANJET_LONG_TESTS) full sizes (N ~ 10^4, 10^6 collisions and more). The tolerances
 // are the same.
 #include <gtest/gtest.h>
 
@@ -22,7 +22,7 @@
 namespace granjet::ed {
 namespace {
 
-// Grains and collisions per grain of the runs: the sizes under the long label. 2D always
+// Grains and collisions per grain of the runs: full sizes under the long label. 2D always
 // takes 10^4 disks: at phi = 0.6 a 2000-disk box reads Z 0.6% low (finite size), and Henderson's
 // equation itself lies 1.2% above the large-system value there.
 #ifdef GRANJET_LONG_TESTS
@@ -141,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(CarnahanStarlingAndHenderson, ElasticGas,
                                       static_cast<int>(std::lround(100 * info.param.phi)));
                          });
 
-// The figure: energy conserved to 1e-9 relative over 10^6 collisions (10^5 in the
+// The target: energy conserved to 1e-9 relative over 10^6 collisions (10^5 in the
 // default suite), the time origin moving many times on the way.
 TEST(ElasticGasEnergy, ConservedOverAMillionCollisions) {
   const GasCase c{3, 0.3, 10976, 0.0};

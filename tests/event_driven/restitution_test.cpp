@@ -1,4 +1,4 @@
-// The restitution laws of the event-driven backend [spec §8].
+// The restitution laws of the event-driven backend [model §8].
 #include "event_driven/restitution.hpp"
 
 #include <gtest/gtest.h>

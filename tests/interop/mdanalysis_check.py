@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""MDAnalysis reads a granjet run as its users would, without flags (issue 15 item 2):
+"""MDAnalysis reads a granjet run as its users would, without flags:
 
     /usr/bin/python3 tests/interop/mdanalysis_check.py RUN.h5 [--periodic] [--removed]
 

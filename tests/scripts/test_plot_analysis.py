@@ -315,7 +315,7 @@ def test_a_file_that_is_not_hdf5_is_refused(tmp):
 
 def test_formulas_match_the_spec(tmp):
     f = plot_analysis
-    assert abs(f.effective_restitution_2_55(0.75, 0.2) - 0.616) < 5e-4  # spec §6
+    assert abs(f.effective_restitution_2_55(0.75, 0.2) - 0.616) < 5e-4  # model §6
     assert abs(f.chi_5_3(0.3) - (1 - 0.15) / 0.7 ** 3) < 1e-12  # [5.3] dilute branch
     below, above = f.chi_5_3(0.49 - 1e-9), f.chi_5_3(0.49 + 1e-9)
     assert abs(below - above) < 1e-6 * below  # continuous at phi_f

@@ -91,7 +91,7 @@ def linked_figures(markdown):
 def test_every_id_has_a_section_in_the_spec_order(tmp):
     _, markdown, _ = default_report()
     positions = [markdown.index(f"\n## {rid}: ") for rid in RESULT_IDS]
-    assert positions == sorted(positions), "sections out of the spec's order"
+    assert positions == sorted(positions), "sections out of the model's order"
     assert markdown.index("\n## The campaign") < positions[0]
     assert "\n## Sensitivity: " in markdown, markdown[-400:]
     # The closing list: one verdict line per id, HC last.
@@ -259,7 +259,7 @@ def test_plan_matches_what_granjet_planned(tmp):
 
 def test_formulas_match_the_spec(tmp):
     r = reproduction_report
-    for (e, t_c), (k_n, eta_n) in r.SPEC_T4_1.items():  # spec §2's table, 3 digits
+    for (e, t_c), (k_n, eta_n) in r.STUDY_T4_1.items():  # model §2's table, 3 digits
         derived = r.contact_parameters_3_4_3_5(e, t_c)
         assert abs(derived[0] - k_n) < 0.005 * k_n and abs(derived[1] - eta_n) < 0.005 * eta_n
     assert abs(r.viscosity_star_5_6(1e-12, 1.0) - 1.0) < 1e-9  # dilute elastic limit

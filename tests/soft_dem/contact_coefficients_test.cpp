@@ -1,4 +1,4 @@
-// [3.4]-[3.5]: (e, t_c) -> (k_n, eta_n), against the spec's table (T4.1) to 3 digits.
+// [3.4]-[3.5]: (e, t_c) -> (k_n, eta_n), against the model's table (T4.1) to 3 digits.
 #include "soft_dem/contact_coefficients.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The tethered target [spec §4]: anchors and neighbour springs k_w with dashpots eta_w, over the
+// The tethered target [model §4]: anchors and neighbour springs k_w with dashpots eta_w, over the
 // wall lattices the scene keys offer.
 #include "soft_dem/tethered_wall.hpp"
 

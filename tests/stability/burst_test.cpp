@@ -1,4 +1,4 @@
-// Stability (b): figure FE.1 of the study [spec §7]: with mu_p = 1.0 the 2D jet's granular
+// Stability (b): figure FE.1 of the study [model §7]: with mu_p = 1.0 the 2D jet's granular
 // temperature in layer (a), -dy < y < 0, flows in bursts when the grains are soft (long t_c)
 // and the bursts die away as the grains get stiffer (the study's mu_p = 1.0 runs use
 // t_c = 0.01 for that reason). Soft DEM backend, AB2, e = 0.75 [3.4]-[3.5], t_c = 0.1, 0.05
@@ -7,10 +7,10 @@
 // Measured on a jet smaller than the study's (strip 20 d, 2000 grains, three seeds, window
 // 30 <= t <= 100; the stiff run costs 1/t_c steps per unit time), or at the study's size with
 // GRANJET_STABILITY_FE1_FULL=1 in the environment (strip 30 d, 8000 grains, window
-// 180 <= t <= 300, the spec's ensemble of 10 seeds: about 17 minutes on one core, three
+// 180 <= t <= 300, the model's ensemble of 10 seeds: about 17 minutes on one core, three
 // quarters of it t_c = 0.01). T_g(t) is sampled every 0.25:
 // T_g = sum m |v - <v>|^2 / (2 N) over the grains whose centres lie in layer (a)
-// (0 < x - wall surface <= 5 d) and -dy < y < 0 (dy = R_tar/5, as in spec §6).
+// (0 < x - wall surface <= 5 d) and -dy < y < 0 (dy = R_tar/5, as in model §6).
 //
 // FE.1 is a figure of T_g(t) (scripts/plot_fe1.py draws ours from the `fe1.tcX.seedN.series`
 // lines). What it shows, measured per seed on T_g(t) itself:

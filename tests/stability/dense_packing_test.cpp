@@ -1,6 +1,6 @@
 // Stability (c): dense packings near jamming.
 //
-// Soft DEM, at the study's dt = 0.02 t_c [spec §3]: compact jets whose grains touch from the
+// Soft DEM, at the study's dt = 0.02 t_c [model §3]: compact jets whose grains touch from the
 // start, so the region over the target jams into a packing of many persistent contacts:
 // - 2D: monodisperse disks on a triangular lattice of spacing 1.0 d with every site kept
 //   (phi = 0.907, the close packing), mu_p = 0.2, tethered target;

@@ -1,4 +1,4 @@
-// Stability (a): time-step sweep up to the blow-up threshold, per integrator [spec §3: AB2,
+// Stability (a): time-step sweep up to the blow-up threshold, per integrator [model §3: AB2,
 // [B.21] [B.22] [B.23]; velocity Verlet], on the soft DEM backend.
 //
 // dt/t_c runs over 0.02 (the study's) ... 1.5. The scene file refuses dt >= t_c; above that the

@@ -1,4 +1,4 @@
-// Stability (d): inelastic collapse of the event-driven backend [spec §8], constant restitution
+// Stability (d): inelastic collapse of the event-driven backend [model §8], constant restitution
 // against the velocity-dependent law e(v_n) = 1 - (1 - e0)(v_n/v0)^(3/4) below v0 = 0.1.
 //
 // tests/event_driven/ed_simulator_test.cpp checks the report for one case (2D, phi = 0.6,
@@ -13,8 +13,8 @@
 //   budget (its slow collisions become nearly elastic), finite, its kinetic energy never rising;
 // - the constant law stops, if it stops, with a BlowUpError naming at least two grains and the
 //   remedy; it never leaves a non-finite state;
-// - strong dissipation collapses: e0 = 0.3 in 2D and 3D, and the dense 2D gas at e0 = 0.5 (the
-//   issue's example); weaker dissipation may cool without collapsing within the budget
+// - strong dissipation collapses: e0 = 0.3 in 2D and 3D, and the dense 2D gas at e0 = 0.5; weaker
+//   dissipation may cool without collapsing within the budget
 //   (recorded, not asserted).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Shared pieces of the stability stress tests (issue 5 item 4): scenes from the shipped scene
+// Shared pieces of the stability stress tests: scenes from the shipped scene
 // files with overrides, the state checks every case makes, and the one summary line per
 // measurement that docs/stability.md quotes (`[stability] ...` on stdout and as a gtest
 // property, so `ctest -L stability --output-on-failure -V` reproduces the report's numbers).
