@@ -16,15 +16,16 @@ GasObserver<D>::GasObserver(const Scene& scene, Simulator<D>& sim)
       initial_temperature_(scene.gas.temperature),
       half_step_(0.5 * scene.dt()),
       start_(scene.gas.equilibration),
-      interval_(scene.gas.sample_interval),
-      next_(scene.gas.equilibration),
+      // The observer asks for times at least half a step ahead (next_time), so a sample is
+      // due at its time exactly.
+      sampling_{scene.gas.equilibration, scene.gas.sample_interval, 0.0},
       grains_(static_cast<double>(sim.particles().size())) {
   observe(sim);
 }
 
 template <int D>
 double GasObserver<D>::next_time(const Simulator<D>& sim) const {
-  return std::max(next_, sim.time() + half_step_);
+  return std::max(sampling_.next, sim.time() + half_step_);
 }
 
 template <int D>
@@ -41,14 +42,14 @@ void GasObserver<D>::observe(Simulator<D>& sim) {
   for (const PairImpulse<D>& j : transfers_)
     virial_ += (j.position_i - j.position_j).dot(j.impulse);
   last_time_ = t;
-  if (t < next_) return;
+  if (!sampling_.due(t)) return;
   const double temperature = 2.0 * sim.energy().kinetic / (D * grains_);
   ++samples_;
   sum_t_ += temperature;
   per_collision_.add(2.0 * static_cast<double>(sim.stats().collisions) / grains_,
                      std::log(temperature));
   in_time_.add(t, 1.0 / std::sqrt(temperature));
-  while (next_ <= t) next_ += interval_;
+  sampling_.pass(t);
 }
 
 template <int D>

@@ -17,6 +17,7 @@
 
 #include "analysis/line_fit.hpp"
 #include "analysis/run_observer.hpp"
+#include "core/interval_schedule.hpp"
 #include "core/scene.hpp"
 #include "core/simulator.hpp"
 
@@ -42,7 +43,7 @@ class GasObserver final : public VisitingObserver<D, GasObserver<D>> {
 
   template <class Visitor>
   void visit_state(Visitor& v) {
-    v("next", next_);
+    v("next", sampling_.next);
     v("started", started_);
     v("started_at", started_at_);
     v("last_time", last_time_);
@@ -62,8 +63,7 @@ class GasObserver final : public VisitingObserver<D, GasObserver<D>> {
   double initial_temperature_;
   double half_step_;  // the least the run advances between two looks
   double start_;
-  double interval_;
-  double next_;
+  IntervalSchedule sampling_;
   bool started_ = false;
   double started_at_ = 0.0;
   double last_time_ = 0.0;

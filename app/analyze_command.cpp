@@ -12,8 +12,8 @@
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/run_analysis.hpp"
-#include "app/ensemble_output.hpp"
-#include "app/scene_file.hpp"
+#include "run/ensemble_output.hpp"
+#include "run/scene_file.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
 

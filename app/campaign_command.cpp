@@ -2,12 +2,12 @@
 
 #include <ostream>
 
-#include "app/campaign_file.hpp"
-#include "app/campaign_plan.hpp"
-#include "app/campaign_report.hpp"
-#include "app/campaign_runner.hpp"
-#include "app/child_process.hpp"
-#include "app/mpi_world.hpp"
+#include "campaign/campaign_file.hpp"
+#include "campaign/campaign_plan.hpp"
+#include "campaign/campaign_report.hpp"
+#include "campaign/campaign_runner.hpp"
+#include "campaign/child_process.hpp"
+#include "campaign/mpi_world.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
 

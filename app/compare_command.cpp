@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
-#include "app/backend_factory.hpp"
-#include "app/run_budget.hpp"
+#include "run/backend_factory.hpp"
+#include "run/run_budget.hpp"
 #include "app/run_command.hpp"
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

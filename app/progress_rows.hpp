@@ -9,6 +9,7 @@
 
 #include "analysis/run_observer.hpp"
 #include "app/progress_table.hpp"
+#include "core/interval_schedule.hpp"
 #include "core/scene.hpp"
 
 namespace granjet {
@@ -18,40 +19,36 @@ class ProgressRows final : public analysis::RunObserver<D> {
  public:
   ProgressRows(std::ostream& out, const Scene& scene, bool event_driven)
       : table_(out, scene.run.t_end, /*quiet=*/false, event_driven),
-        interval_(scene.run.progress_interval),
-        half_step_(0.5 * scene.dt()),
-        next_progress_(interval_) {}
+        schedule_(IntervalSchedule::every(scene.run.progress_interval, 0.5 * scene.dt())) {}
 
   void header() { table_.header(); }
   // Of every invocation of the run so far.
   double wall_seconds() const { return earlier_seconds_ + table_.elapsed_seconds(); }
   double cpu_seconds() const { return earlier_cpu_seconds_ + table_.cpu_seconds(); }
 
-  double next_time(const Simulator<D>&) const override { return next_progress_; }
+  double next_time(const Simulator<D>&) const override { return schedule_.next; }
   void observe(Simulator<D>& sim) override {
     const double t = sim.time();
-    if (t < next_progress_ - half_step_) return;
+    if (!schedule_.due(t)) return;
     table_.row(t, static_cast<std::int64_t>(sim.particles().size()), sim.stats(), sim.energy());
-    while (next_progress_ <= t + half_step_) next_progress_ += interval_;
+    schedule_.pass(t);
   }
   std::string state_group() const override { return "run"; }
   std::string profile_name() const override { return "progress rows"; }
   void save_state(StateWriter& out) override {
-    out("next_progress", next_progress_);
+    out("next_progress", schedule_.next);
     out("wall_seconds", wall_seconds());
     out("cpu_seconds", cpu_seconds());
   }
   void restore_state(StateReader& in) override {
-    in("next_progress", next_progress_);
+    in("next_progress", schedule_.next);
     in("wall_seconds", earlier_seconds_);
     if (in.contains("cpu_seconds")) in("cpu_seconds", earlier_cpu_seconds_);
   }
 
  private:
   ProgressTable table_;
-  double interval_;
-  double half_step_;
-  double next_progress_;
+  IntervalSchedule schedule_;
   double earlier_seconds_ = 0.0;  // of the invocations before this one
   double earlier_cpu_seconds_ = 0.0;  // checkpoints before it was kept start it at 0
 };

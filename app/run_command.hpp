@@ -18,7 +18,7 @@ struct RunOptions {
   bool quiet = false;
   bool log = true;  // <out stem>.log beside the output (app/run_log.hpp)
   // Wall time per phase of the loop and its serial share, reported at the end and in the
-  // summary (app/run_profile.hpp).
+  // summary (run/run_profile.hpp).
   bool profile = false;
   // The H5MD author (/h5md/author/name); empty: $GRANJET_AUTHOR, else the login name.
   std::string author;

@@ -1,7 +1,7 @@
 // Full DEM steps on the shipped jets (Google Benchmark): particle-steps/s after impact.
 #include <benchmark/benchmark.h>
 
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "analysis/inline_analysis.hpp"
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace {

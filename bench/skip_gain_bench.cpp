@@ -5,7 +5,7 @@
 // z = 0 (its jet axis x turned onto z, so the removal region matches). particle-steps/s.
 #include <benchmark/benchmark.h>
 
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"

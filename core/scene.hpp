@@ -1,5 +1,5 @@
 // The scene as plain data: everything a run needs, in the units of the model (d, m, u0).
-// Parsing lives in app/ (scene_file); building the initial grains in core/initial_state.
+// Parsing lives in run/ (scene_file); building the initial grains in core/initial_state.
 #pragma once
 
 #include <algorithm>
@@ -165,7 +165,7 @@ enum class UnitLabels { kMdAnalysis, kReduced };
 
 struct OutputSpec {
   double interval = 1.0;  // sim time between stored frames; 0 = initial and final only
-  // A run whose frames would take more is refused before it starts (app/run_budget).
+  // A run whose frames would take more is refused before it starts (run/run_budget).
   double max_bytes = 8e9;
   // Per-grain data beyond position, velocity, radius and id (which analysis reads back).
   bool omega = false;

@@ -1,7 +1,7 @@
 // What a backend makes of a scene, declared before anything runs (as OpenMM's platforms say
 // which systems they can run): the features it cannot run, each refused naming its key; the
 // keys it changes to run the rest; and what it ignores or advises. The app refuses, or runs the
-// resolved scene and records it beside the requested one (app/backend_factory.hpp).
+// resolved scene and records it beside the requested one (run/backend_factory.hpp).
 #pragma once
 
 #include <string>

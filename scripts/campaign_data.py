@@ -1,6 +1,6 @@
 """What a `granjet campaign` directory holds, read for scripts/reproduction_report.py.
 
-The plan is rebuilt from the campaign file exactly as app/campaign_plan.cpp builds it (groups,
+The plan is rebuilt from the campaign file exactly as campaign/campaign_plan.cpp builds it (groups,
 swept keys and their product, point labels, seed lists, --quick keeping the first seed), so
 groups added to the file after the campaign ran are listed as not run. The files are where
 the campaign writes them: DIR/<group>/<point>.h5 (the ensemble of the point's seeds, read with
@@ -59,7 +59,7 @@ def split_list(text):
 
 
 def parse_seeds(text):
-    """app/seed_list.cpp: a range A..B or a list a, b, c."""
+    """run/seed_list.cpp: a range A..B or a list a, b, c."""
     if ".." in text:
         first, last = (int(v) for v in text.split(".."))
         return list(range(first, last + 1))
@@ -109,7 +109,7 @@ class Group:
 
     def points(self):
         """(label, {key: value}) of every combination of the swept keys, the first swept key
-        varying slowest, labelled as app/campaign_plan.cpp's point_label."""
+        varying slowest, labelled as campaign/campaign_plan.cpp's point_label."""
         swept = [(k, v) for k, v in self.keys if len(v) > 1]
         fixed = {k: v[0] for k, v in self.keys if len(v) == 1}
         short = [k.rsplit(".", 1)[-1] for k, _ in swept]

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "analysis/run_analysis.hpp"
-#include "app/backend_factory.hpp"
-#include "app/scene_file.hpp"
+#include "run/backend_factory.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "analysis/h5md_reader.hpp"
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "command_fixture.hpp"
 
 namespace granjet {

@@ -1,6 +1,6 @@
 // `granjet run --profile`: the loop's wall time by phase, and its serial share (Amdahl's bound
-// on the speed-up), from core/phase_profile.hpp through app/run_profile.cpp to the summary.
-#include "app/run_profile.hpp"
+// on the speed-up), from core/phase_profile.hpp through run/run_profile.cpp to the summary.
+#include "run/run_profile.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,8 +12,8 @@
 #include "analysis/analysis_json.hpp"
 #include "analysis/gas_observer.hpp"
 #include "analysis/inline_analysis.hpp"
-#include "app/backend_factory.hpp"
-#include "app/scene_file.hpp"
+#include "run/backend_factory.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "analysis/gas_observer.hpp"
-#include "app/backend_factory.hpp"
+#include "run/backend_factory.hpp"
 
 namespace granjet {
 namespace {

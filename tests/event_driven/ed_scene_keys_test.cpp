@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
 
 namespace granjet {

@@ -11,7 +11,7 @@
 #include <set>
 #include <utility>
 
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
 #include "core/random.hpp"
 #include "core/state_archive.hpp"

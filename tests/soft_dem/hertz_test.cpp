@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "app/backend_factory.hpp"
-#include "app/scene_file.hpp"
+#include "run/backend_factory.hpp"
+#include "run/scene_file.hpp"
 #include "core/errors.hpp"
 #include "soft_dem/hertz_mindlin.hpp"
 #include "two_grains.hpp"

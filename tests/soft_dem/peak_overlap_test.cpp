@@ -1,4 +1,4 @@
-// Each contact law's peak_overlap, which the run budget refuses scenes by (app/run_budget.cpp),
+// Each contact law's peak_overlap, which the run budget refuses scenes by (run/run_budget.cpp),
 // against the deepest overlap of a head-on binary collision on the DEM backend: equal when
 // elastic ([3.1] with [3.4]: v t_c / pi; Hertz: (5 m_eff v^2 / 4 K)^(2/5)), an upper bound
 // when damped.
@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "app/run_budget.hpp"
+#include "run/run_budget.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "soft_dem/dem_simulator.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace granjet {

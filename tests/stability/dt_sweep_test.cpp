@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "../soft_dem/two_grains.hpp"
-#include "app/backend_factory.hpp"
+#include "run/backend_factory.hpp"
 #include "core/errors.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"

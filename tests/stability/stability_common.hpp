@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/scene_file.hpp"
+#include "run/scene_file.hpp"
 #include "core/particles.hpp"
 #include "core/scene.hpp"
 

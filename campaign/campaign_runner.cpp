@@ -1,0 +1,366 @@
+#include "campaign/campaign_runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <fstream>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+#include "analysis/h5md_reader.hpp"
+#include "run/backend_factory.hpp"
+#include "campaign/campaign_manifest.hpp"
+#include "run/ensemble_output.hpp"
+#include "run/scene_file.hpp"
+
+namespace granjet {
+namespace {
+
+constexpr auto kPoll = std::chrono::milliseconds(20);
+
+std::optional<nlohmann::json> read_json(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
+}
+
+// Whether `file` is a granjet output of this run's backend and resolved scene. The stored
+// scene is resolved again, by the current parser, so a key added since (whose default keeps
+// the old behaviour) does not make finished runs look foreign, and by the backend, since files
+// written before it declared its adaptations store the scene as requested.
+bool holds_run(const std::filesystem::path& file, const PlannedRun& run) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return false;
+  try {
+    const analysis::FileSummary s = analysis::read_summary(file);
+    std::istringstream stored(s.scene_ini);
+    const Scene scene = check_backend(s.backend, parse_scene(stored, file.string(), {})).resolved;
+    return scene_hash(s.backend, scene_to_ini(scene)) == run.hash;
+  } catch (const std::exception&) {
+    return false;  // unreadable, or a scene this build cannot parse: not this run's output
+  }
+}
+
+RunState state_of_exit(int code) {
+  return code == 0 ? RunState::kComplete : code == 3 ? RunState::kBlownUp : RunState::kFailed;
+}
+
+class Coordinator {
+ public:
+  Coordinator(const CampaignFile& campaign, const CampaignPlan& plan, MpiWorld& world,
+              const RunnerOptions& options, std::ostream& out)
+      : campaign_(campaign),
+        plan_(plan),
+        world_(world),
+        options_(options),
+        out_(out),
+        outcomes_(plan.runs.size()),
+        ensemble_of_(plan.runs.size()),
+        manifest_(options.out_dir),
+        hosts_(world.hostnames()) {
+    for (std::size_t e = 0; e < plan.ensembles.size(); ++e)
+      for (std::size_t r : plan.ensembles[e].runs) ensemble_of_[r] = e;
+  }
+
+  int run() {
+    start_ = std::chrono::steady_clock::now();
+    begin_invocation();
+    find_complete_runs();
+    for (std::size_t e = 0; e < plan_.ensembles.size(); ++e) merge_if_settled(e);
+    std::vector<std::optional<std::pair<std::size_t, ChildProcess>>> slots(options_.jobs);
+    int workers = world_.size() - 1;  // ranks not yet told to stop
+    while (!queue_.empty() || workers > 0 ||
+           std::any_of(slots.begin(), slots.end(), [](const auto& s) { return s.has_value(); })) {
+      bool busy = false;
+      for (auto& slot : slots) {
+        if (slot) {
+          if (const auto code = slot->second.poll()) {
+            finished(slot->first, *code, slot->second.seconds(), 0);
+            slot.reset();
+            busy = true;
+          }
+        }
+        if (!slot && !queue_.empty()) {
+          const std::size_t r = next();
+          mark_running(r, 0);
+          slot.emplace(r, start_run(plan_.runs[r]));
+        }
+      }
+      while (const auto report = world_.try_receive()) {
+        busy = true;
+        if (report->run >= 0)
+          finished(static_cast<std::size_t>(report->run), report->exit_code, report->seconds,
+                   report->rank);
+        if (queue_.empty()) {
+          world_.assign(report->rank, -1);
+          --workers;
+        } else {
+          const std::size_t r = next();
+          mark_running(r, report->rank);
+          world_.assign(report->rank, static_cast<std::int64_t>(r));
+        }
+      }
+      if (!busy) std::this_thread::sleep_for(kPoll);
+    }
+    return end_invocation();
+  }
+
+ private:
+  void begin_invocation() {
+    nlohmann::json& m = manifest_.json();
+    m["campaign"] = campaign_.name;
+    m["file"] = std::filesystem::absolute(campaign_.file).string();
+    m["description"] = campaign_.description;
+    nlohmann::json inv = options_.invocation;
+    inv["started"] = utc_now();
+    inv["host"] = hosts_.front();
+    inv["jobs"] = options_.jobs;
+    inv["ranks"] = world_.size();
+    inv["planned"] = plan_.runs.size();
+    m["invocations"].push_back(inv);
+  }
+
+  // Runs whose complete output is already there are not run again; the rest queue up, the
+  // longest first (fewest idle slots at the end).
+  void find_complete_runs() {
+    std::vector<std::size_t> pending;
+    for (std::size_t r = 0; r < plan_.runs.size(); ++r) {
+      const PlannedRun& run = plan_.runs[r];
+      outcomes_[r].state = stored_state(run);
+      nlohmann::json& entry = manifest_.run(run.name);
+      // An entry of an earlier invocation keeps its history (host, times) if it describes this
+      // very run: the same hash, or a complete file that holds this run under a scene hash
+      // written before keys were added (stored_state resolves it anew); its paths follow DIR,
+      // which may have moved.
+      const bool known = entry.is_object() && (entry.value("hash", std::string()) == run.hash ||
+                                               outcomes_[r].state == RunState::kComplete);
+      if (!known) entry = nlohmann::json::object();
+      entry.update(describe(run));
+      if (outcomes_[r].state == RunState::kMissing) {
+        entry["status"] = "pending";
+        pending.push_back(r);
+      } else {
+        entry["status"] = state_name(outcomes_[r].state);
+        outcomes_[r].seconds = entry.value("wall_seconds", 0.0);
+        ++found_;
+      }
+    }
+    std::stable_sort(pending.begin(), pending.end(), [&](std::size_t a, std::size_t b) {
+      return plan_.runs[a].cost.seconds > plan_.runs[b].cost.seconds;
+    });
+    queue_.assign(pending.begin(), pending.end());
+    for (std::size_t r : pending) to_do_seconds_ += plan_.runs[r].cost.seconds;
+    manifest_.invocation()["found_complete"] = found_;
+    manifest_.save();
+    if (!options_.quiet)
+      out_ << "campaign " << campaign_.name << ": " << plan_.runs.size() << " runs, " << found_
+           << " already done, " << pending.size() << " to run on " << options_.jobs
+           << " local slot(s) and " << world_.size() - 1 << " other rank(s)\n"
+           << std::flush;
+  }
+
+  nlohmann::json describe(const PlannedRun& run) const {
+    const CampaignGroup& g = campaign_.groups[run.group];
+    return {{"group", g.name},
+            {"point", run.point},
+            {"seed", run.seed},
+            {"backend", run.backend},
+            {"results", g.results},
+            {"hash", run.hash},
+            {"overrides", run.overrides},
+            {"output", run.file(".h5").string()},
+            {"summary", run.file(".json").string()},
+            {"log", run.file(".log").string()},
+            {"cost",
+             {{"grains", run.cost.grains},
+              {"steps", run.cost.steps},
+              {"particle_steps", run.cost.particle_steps},
+              {"grain_time", run.cost.grain_time},
+              {"estimated_seconds", run.cost.seconds}}}};
+  }
+
+  std::size_t next() {
+    const std::size_t r = queue_.front();
+    queue_.pop_front();
+    return r;
+  }
+
+  void mark_running(std::size_t r, int rank) {
+    nlohmann::json& entry = manifest_.run(plan_.runs[r].name);
+    entry = describe(plan_.runs[r]);
+    entry["status"] = "running";
+    entry["host"] = hosts_.at(rank);
+    entry["rank"] = rank;
+    entry["started"] = utc_now();
+    manifest_.save();
+  }
+
+  void finished(std::size_t r, int code, double seconds, int rank) {
+    RunOutcome& o = outcomes_[r];
+    o.state = state_of_exit(code);
+    o.executed = true;
+    o.seconds = seconds;
+    nlohmann::json& entry = manifest_.run(plan_.runs[r].name);
+    entry["status"] = state_name(o.state);
+    entry["exit_code"] = code;
+    entry["wall_seconds"] = seconds;
+    entry["host"] = hosts_.at(rank);
+    entry["rank"] = rank;
+    entry["finished"] = utc_now();
+    done_seconds_ += plan_.runs[r].cost.seconds;
+    ++executed_;
+    manifest_.save();
+    if (!options_.quiet) print_progress(r, rank, code);
+    merge_if_settled(ensemble_of_[r]);
+  }
+
+  void print_progress(std::size_t r, int rank, int code) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double eta =
+        done_seconds_ > 0.0 ? elapsed * (to_do_seconds_ - done_seconds_) / done_seconds_ : 0.0;
+    char line[64];
+    std::snprintf(line, sizeof line, "[%zu/%zu] ", executed_, plan_.runs.size() - found_);
+    out_ << line << plan_.runs[r].name << "  " << state_name(outcomes_[r].state);
+    if (outcomes_[r].state != RunState::kComplete)
+      out_ << " (exit code " << code << ", see " << plan_.runs[r].file(".log").string() << ")";
+    std::snprintf(line, sizeof line, "  %.1f s", outcomes_[r].seconds);
+    out_ << line << (world_.size() > 1 ? "  rank " + std::to_string(rank) : "") << "  ETA "
+         << format_duration(eta) << "\n"
+         << std::flush;
+  }
+
+  // Merges an ensemble once none of its seeds is still to run, unless an identical merge is on
+  // disk already (same member hashes, nothing rerun since).
+  void merge_if_settled(std::size_t e) {
+    const PlannedEnsemble& ens = plan_.ensembles[e];
+    if (!ens.analysed) return;
+    nlohmann::json hashes = nlohmann::json::array();
+    bool any_executed = false;
+    for (std::size_t r : ens.runs) {
+      if (outcomes_[r].state == RunState::kMissing) return;
+      hashes.push_back(plan_.runs[r].hash);
+      any_executed |= outcomes_[r].executed;
+    }
+    nlohmann::json& entry = manifest_.ensemble(ens.name);
+    if (!any_executed && entry.is_object() && entry.value("hashes", nlohmann::json()) == hashes &&
+        std::filesystem::exists(ens.file(".json")))
+      return;
+    std::vector<EnsembleMember> members;
+    for (std::size_t r : ens.runs)
+      if (outcomes_[r].state == RunState::kComplete)
+        members.push_back({plan_.runs[r].seed, plan_.runs[r].file(".h5")});
+    const PlannedRun& first = plan_.runs[ens.runs.front()];
+    const nlohmann::json header = {{"scene", first.scene.name},
+                                   {"backend", first.backend},
+                                   {"dimension", first.scene.dimension}};
+    const int combined =
+        merge_ensemble(ens.file(".h5"), ens.file(".json"), header, members, first.scene.dimension);
+    if (combined == 0) std::filesystem::remove(ens.file(".json"));
+    entry = {{"group", campaign_.groups[ens.group].name},
+             {"point", ens.point},
+             {"seeds", ens.runs.size()},
+             {"hashes", hashes},
+             {"combined", combined},
+             {"output", ens.file(".h5").string()},
+             {"summary", ens.file(".json").string()},
+             {"merged", utc_now()}};
+    manifest_.save();
+    if (!options_.quiet)
+      out_ << "ensemble " << ens.name << ": " << combined << " of " << ens.runs.size()
+           << " seeds combined into " << ens.file(".h5").string() << "\n"
+           << std::flush;
+  }
+
+  int end_invocation() {
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::size_t complete = 0, blown_up = 0, failed = 0;
+    for (const RunOutcome& o : outcomes_) {
+      complete += o.state == RunState::kComplete;
+      blown_up += o.state == RunState::kBlownUp;
+      failed += o.state == RunState::kFailed;
+    }
+    nlohmann::json& inv = manifest_.invocation();
+    inv["finished"] = utc_now();
+    inv["executed"] = executed_;
+    inv["complete"] = complete;
+    inv["blown_up"] = blown_up;
+    inv["failed"] = failed;
+    inv["wall_seconds"] = wall;
+    manifest_.save();
+    print_outcome_table(plan_, outcomes_, wall, out_);
+    return failed > 0 ? 1 : blown_up > 0 ? 3 : 0;
+  }
+
+  const CampaignFile& campaign_;
+  const CampaignPlan& plan_;
+  MpiWorld& world_;
+  const RunnerOptions& options_;
+  std::ostream& out_;
+  std::vector<RunOutcome> outcomes_;
+  std::vector<std::size_t> ensemble_of_;
+  CampaignManifest manifest_;
+  std::vector<std::string> hosts_;
+  std::deque<std::size_t> queue_;
+  std::chrono::steady_clock::time_point start_;
+  std::size_t found_ = 0, executed_ = 0;
+  double to_do_seconds_ = 0.0, done_seconds_ = 0.0;
+};
+
+}  // namespace
+
+RunState stored_state(const PlannedRun& run) {
+  const std::optional<nlohmann::json> summary = read_json(run.file(".json"));
+  if (!summary || !summary->is_object()) return RunState::kMissing;
+  const std::string status = summary->value("status", std::string());
+  if (status == "complete" && holds_run(run.file(".h5"), run)) return RunState::kComplete;
+  if (status.rfind("blow-up", 0) == 0 && holds_run(run.file(".h5.partial"), run))
+    return RunState::kBlownUp;
+  return RunState::kMissing;
+}
+
+ChildProcess start_run(const PlannedRun& run) {
+  std::filesystem::create_directories(run.base.parent_path());
+  for (const char* stale : {".h5", ".h5.partial", ".json", ".xmf", ".fields.xmf"})
+    std::filesystem::remove(run.file(stale));
+  {
+    std::ofstream ini(run.file(".ini"));
+    ini << "# " << run.name << ": the resolved scene of this campaign run\n";
+    for (const std::string& adaptation : run.adaptations) ini << "# " << adaptation << "\n";
+    ini << run.scene_ini;
+    if (!ini.flush()) throw std::runtime_error("cannot write " + run.file(".ini").string());
+  }
+  std::ofstream(run.file(".log"), std::ios::trunc);
+  // The child's stdout and stderr are its log: its own would be the same rows (the resolved
+  // scene and the summary are the .ini and the .json).
+  return ChildProcess(
+      {"run", run.file(".ini").string(), "--backend", run.backend, "--out",
+       run.file(".h5").string(), "--summary", run.file(".json").string(), "--no-log"},
+      run.file(".log"));
+}
+
+int coordinate_campaign(const CampaignFile& campaign, const CampaignPlan& plan, MpiWorld& world,
+                        const RunnerOptions& options, std::ostream& out) {
+  return Coordinator(campaign, plan, world, options, out).run();
+}
+
+void work_for_campaign(const CampaignPlan& plan, MpiWorld& world) {
+  world.hostnames();  // the collective call rank 0 makes in its coordinator
+  MpiWorld::Report report;
+  for (std::int64_t r; (r = world.report_and_receive(report)) >= 0;) {
+    ChildProcess child = start_run(plan.runs.at(static_cast<std::size_t>(r)));
+    report.run = r;
+    report.exit_code = child.wait();
+    report.seconds = child.seconds();
+  }
+}
+
+}  // namespace granjet

@@ -1,0 +1,205 @@
+#include "run/run_budget.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "analysis/kinetic_theory.hpp"
+#include "run/backend_factory.hpp"
+#include "core/errors.hpp"
+#include "core/number_text.hpp"
+
+namespace granjet {
+namespace {
+
+// The limits, each far beyond what the study needs (a jet3d run: 5e4 steps, 101 frames, 100
+// samples, 2e4 grains in 60 d) and each what a day of one core could at best get through.
+constexpr double kMaxSteps = 1e9;
+constexpr double kMaxCollisions = 1e12;
+constexpr double kMaxFrames = 1e5;
+constexpr double kMaxProgressRows = 1e6;
+constexpr double kMaxSamples = 1e7;
+constexpr double kMaxJetSites = 1e9;  // lattice sites drawn to build the jet
+// Farther out, double positions lose the 1e-9 d that contacts of 1e-3 d overlap need.
+constexpr double kMaxExtent = 1e7;
+// Measured peaks (jet3d, gas3d) are 0.6-1 kB a grain; contacts and lists of a dense pile add.
+constexpr double kBytesPerGrain = 2048.0;
+constexpr double kBaseBytes = 64e6;
+
+// "KEY: WHAT would be VALUE UNIT; at most LIMIT UNIT".
+void refuse_above(double value, double limit, const std::string& key, const std::string& what,
+                  const std::string& unit = "") {
+  // !(<=) also refuses NaN and infinity.
+  if (!(value <= limit))
+    throw InputError(key, what + " would be " + number_text(value) + unit + "; at most " +
+                              number_text(limit) + unit);
+}
+
+double wall_grains(const Scene& s) {
+  const double across = s.wall.diameter / s.wall.spacing;
+  if (s.dimension == 2) return std::floor(across) + 1.0;
+  const double site_area = s.wall.lattice == WallLattice::kHexagonal ? std::sqrt(3.0) / 2.0 : 1.0;
+  return std::round(std::numbers::pi / 4.0 * across * across / site_area);
+}
+
+// The jet's length along its axis: the lattice sites it draws, at the fcc (3D) or triangular
+// (2D) volume per site, spread over its cross section.
+double jet_length(const Scene& s) {
+  const JetSpec& j = s.jet;
+  const double sites = static_cast<double>(j.grains) / j.phi_tilde;
+  if (s.dimension == 2) return sites * j.spacing * j.spacing * std::sqrt(3.0) / 2.0 / j.diameter;
+  const double section =
+      j.shape == JetShape::kRectangle ? j.area : std::numbers::pi / 4.0 * j.diameter * j.diameter;
+  return sites * std::pow(j.spacing, 3) / std::numbers::sqrt2 / section;
+}
+
+double gas_box_edge(const Scene& s) {
+  const double grain_volume = s.dimension == 3 ? std::numbers::pi / 6.0 : std::numbers::pi / 4.0;
+  return std::pow(static_cast<double>(s.gas.grains) * grain_volume / s.gas.phi, 1.0 / s.dimension);
+}
+
+void check_extent(const Scene& s) {
+  // Farther out, positions lose the precision contacts need.
+  const std::string d = " d";
+  switch (s.kind) {
+    case SceneKind::kJet:
+      refuse_above(static_cast<double>(s.jet.grains) / s.jet.phi_tilde, kMaxJetSites,
+                   "jet.phi_tilde",
+                   "the lattice sites drawn for the jet (jet.grains / jet.phi_tilde)");
+      refuse_above(jet_length(s), kMaxExtent, "jet.spacing",
+                   "the jet's length (jet.grains / jet.phi_tilde sites of jet.spacing across "
+                   "jet.diameter)",
+                   d);
+      refuse_above(s.jet.gap, kMaxExtent, "jet.gap", "the gap", d);
+      refuse_above(s.wall.diameter, kMaxExtent, "wall.diameter", "the target's diameter", d);
+      break;
+    case SceneKind::kBinary:
+      refuse_above(s.binary.gap, kMaxExtent, "binary.gap", "the gap", d);
+      break;
+    case SceneKind::kGas:
+    case SceneKind::kHcs:
+      refuse_above(gas_box_edge(s), kMaxExtent, "gas.phi", "the box edge (gas.grains at gas.phi)",
+                   d);
+      break;
+  }
+}
+
+void check_memory(const Scene& s, double memory_bytes) {
+  const double grains = estimated_grains(s);
+  const double bytes = kBaseBytes + kBytesPerGrain * grains;
+  if (bytes <= memory_bytes) return;
+  const std::string key = s.periodic()                                         ? "gas.grains"
+                          : wall_grains(s) > static_cast<double>(s.jet.grains) ? "wall.diameter"
+                                                                               : "jet.grains";
+  throw InputError(key, number_text(grains) + " grains would need about " +
+                            number_text(bytes / 1e9) + " GB; this machine has " +
+                            number_text(memory_bytes / 1e9) + " GB");
+}
+
+// A head-on contact at the scene's characteristic speed (the jet's, the binary's, or the gas's
+// rms relative speed sqrt(2 D T), with T = sum m v^2 / (D N)) overlaps by at most what the
+// backend's contact law says (for [3.1] with [3.4], v t_c / pi).
+void check_soft_overlap(const Scene& s, double (*peak_overlap)(const Scene&, double)) {
+  double speed = s.jet.speed;
+  std::string key = "jet.speed";
+  if (s.kind == SceneKind::kBinary) {
+    speed = s.binary.speed;
+    key = "binary.speed";
+  } else if (s.periodic()) {
+    speed = std::sqrt(2.0 * s.dimension * s.gas.temperature);
+    key = "gas.temperature";
+  }
+  const double smaller_radius =
+      0.5 * (s.monodisperse() ? 1.0 : std::min(1.0, s.jet.small_diameter));
+  const double overlap = peak_overlap(s, speed);
+  if (overlap > s.run.max_overlap * smaller_radius)
+    throw InputError(
+        key, "at speed " + number_text(speed) + " a contact of contact.contact_time = " +
+                 number_text(s.contact.contact_time) + " overlaps by " + number_text(overlap) +
+                 " d, beyond run.max_overlap = " + number_text(s.run.max_overlap) +
+                 " of the smaller radius " + number_text(smaller_radius) +
+                 ": the soft DEM would blow up; slow the grains or shorten t_c");
+}
+
+void check_duration(const Scene& s, const Backend& backend) {
+  const double t_end = s.run.t_end;
+  // A time-stepped backend steps by dt; an event-driven binary run is sampled every dt too.
+  if (!backend.counts_events || s.kind == SceneKind::kBinary)
+    refuse_above(t_end / s.dt(), kMaxSteps, s.run.dt > 0.0 ? "run.dt" : "run.t_end",
+                 "the time steps (run.t_end / run.dt)");
+  if (backend.counts_events && s.periodic()) {
+    // Enskog's collision frequency per grain (d = m = 1): 24 phi chi sqrt(T/pi) in 3D,
+    // 8 phi chi sqrt(T/pi) in 2D, with phi chi from the equation of state Z = 1 + 2^(D-1) phi chi.
+    const double z = s.dimension == 3 ? analysis::kinetic::carnahan_starling(s.gas.phi)
+                                      : analysis::kinetic::henderson(s.gas.phi);
+    const double phi_chi = (z - 1.0) / (s.dimension == 3 ? 4.0 : 2.0);
+    const double per_grain =
+        (s.dimension == 3 ? 24.0 : 8.0) * phi_chi * std::sqrt(s.gas.temperature / std::numbers::pi);
+    refuse_above(0.5 * static_cast<double>(s.gas.grains) * per_grain * t_end, kMaxCollisions,
+                 "gas.temperature",
+                 "the collisions of gas.grains over run.t_end at gas.temperature (Enskog)");
+  }
+  const double frames = s.output.interval > 0.0 ? t_end / s.output.interval + 2.0 : 2.0;
+  refuse_above(frames, kMaxFrames, "output.interval", "the frames (run.t_end / output.interval)");
+  refuse_above(t_end / s.run.progress_interval, kMaxProgressRows, "run.progress_interval",
+               "the progress rows (run.t_end / run.progress_interval)");
+  if (s.periodic())
+    refuse_above((t_end - s.gas.equilibration) / s.gas.sample_interval, kMaxSamples,
+                 "gas.sample_interval",
+                 "the temperature samples (run.t_end / gas.sample_interval)");
+  if (s.kind == SceneKind::kJet && s.analysis.enabled)
+    refuse_above((std::min(t_end, s.analysis.window_end) - s.analysis.window_start) /
+                     s.analysis.sample_interval,
+                 kMaxSamples, "analysis.sample_interval",
+                 "the analysis samples (window / analysis.sample_interval)");
+  // Every frame stores id, present, radius, position and velocity of every grain, and what
+  // output.fields adds: omega, force, and the contacts, at most one per grain pair of a dense
+  // packing (3 per grain in 3D, 2 in 2D), each two ids, two force vectors and an overlap.
+  const double d = s.dimension;
+  double per_grain = 2.0 * d + 3.0;
+  if (s.output.omega) per_grain += d == 3 ? 3.0 : 1.0;
+  if (s.output.force) per_grain += d;
+  if (s.output.contacts) per_grain += (d == 3 ? 3.0 : 2.0) * (3.0 + 2.0 * d);
+  const double frame_bytes = estimated_grains(s) * per_grain * 8.0;
+  if (frames * frame_bytes > s.output.max_bytes)
+    throw InputError(
+        "output.max_bytes",
+        number_text(frames) + " frames of " + number_text(estimated_grains(s)) +
+            " grains need about " + number_text(frames * frame_bytes / 1e9) +
+            " GB, more than output.max_bytes = " + number_text(s.output.max_bytes / 1e9) +
+            " GB; store fewer frames (output.interval) or raise it");
+}
+
+}  // namespace
+
+double physical_memory_bytes() {
+  return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+         static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+}
+
+double estimated_grains(const Scene& s) {
+  switch (s.kind) {
+    case SceneKind::kJet:
+      return static_cast<double>(s.jet.grains) +
+             (s.wall.kind == WallKind::kPlate ? 0.0 : wall_grains(s));
+    case SceneKind::kBinary:
+      return 2.0;
+    case SceneKind::kGas:
+    case SceneKind::kHcs:
+      return static_cast<double>(s.gas.grains);
+  }
+  return 0.0;
+}
+
+void check_run_budget(const Scene& scene, const std::string& backend_name, double memory_bytes) {
+  const Backend& backend = backend_named(backend_name);
+  check_memory(scene, memory_bytes);  // first: it names the grain count, the likeliest cause
+  check_extent(scene);
+  if (backend.peak_overlap) check_soft_overlap(scene, backend.peak_overlap);
+  check_duration(scene, backend);
+}
+
+}  // namespace granjet
