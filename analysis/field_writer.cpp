@@ -36,7 +36,7 @@ class GroupWriter {
   void dataset(const std::string& name, const std::vector<hsize_t>& dims,
                const std::vector<T>& data) {
     const hid_t type = std::is_same_v<T, int> ? H5T_NATIVE_INT : H5T_NATIVE_DOUBLE;
-    const H5Handle space = dataspace(dims);
+    const H5Handle space = ctx_.dataspace(dims);
     const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), name.c_str(), type, space.get(),
                                              links_.get(), H5P_DEFAULT, H5P_DEFAULT),
                                   H5Dclose, "create", name);
@@ -45,14 +45,13 @@ class GroupWriter {
   }
 
   void attribute(const std::string& object, const char* name, int value) {
-    write_attribute(object, name, H5T_NATIVE_INT, dataspace({}).get(), &value);
+    write_attribute(object, name, H5T_NATIVE_INT, ctx_.dataspace({}).get(), &value);
   }
   void attribute(const std::string& object, const char* name, double value) {
-    write_attribute(object, name, H5T_NATIVE_DOUBLE, dataspace({}).get(), &value);
+    write_attribute(object, name, H5T_NATIVE_DOUBLE, ctx_.dataspace({}).get(), &value);
   }
   void attribute(const std::string& object, const char* name, const std::string& value) {
-    write_attribute(object, name, string_type(value.size() + 1).get(), dataspace({}).get(),
-                    value.c_str());
+    ctx_.write_string_attribute(file_.get(), object, name, value);
   }
   // A list of names as one fixed-length string array.
   void attribute(const std::string& object, const char* name,
@@ -62,32 +61,17 @@ class GroupWriter {
     std::string packed(width * values.size(), '\0');
     for (std::size_t k = 0; k < values.size(); ++k)
       packed.replace(k * width, values[k].size(), values[k]);
-    write_attribute(object, name, string_type(width).get(), dataspace({values.size()}).get(),
-                    packed.data());
+    write_attribute(object, name, ctx_.string_type(width).get(),
+                    ctx_.dataspace({values.size()}).get(), packed.data());
   }
 
   // Closes the file, reporting a failure to write its last metadata.
   void close() { ctx_.check(file_.reset(), "close", "the file"); }
 
  private:
-  H5Handle dataspace(const std::vector<hsize_t>& dims) const {
-    const hid_t space = dims.empty()
-                            ? H5Screate(H5S_SCALAR)
-                            : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
-    return ctx_.own(space, H5Sclose, "create", "a dataspace");
-  }
-  H5Handle string_type(std::size_t size) const {
-    H5Handle type = ctx_.own(H5Tcopy(H5T_C_S1), H5Tclose, "create", "a string type");
-    ctx_.check(H5Tset_size(type.get(), size), "size", "a string type");
-    return type;
-  }
   void write_attribute(const std::string& object, const char* name, hid_t type, hid_t space,
                        const void* data) {
-    const std::string what = object + " attribute " + name;
-    const H5Handle a = ctx_.own(H5Acreate_by_name(file_.get(), object.c_str(), name, type, space,
-                                                  H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                                H5Aclose, "create", what);
-    ctx_.check(H5Awrite(a.get(), type, data), "write", what);
+    ctx_.write_attribute(file_.get(), object, name, type, space, data);
   }
 
   H5Context ctx_;

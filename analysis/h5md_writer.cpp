@@ -98,12 +98,15 @@ class H5mdFile {
     std::vector<Dataset*> per_frame();
   };
 
-  H5Handle dataspace(const std::vector<hsize_t>& dims) const;  // scalar when dims is empty
-  H5Handle string_type(std::size_t size) const;                // size counts the trailing NUL
   void create_group(const char* name) const;
   void write_attribute(const char* object, const char* name, hid_t type, hid_t space,
-                       const void* data) const;
-  void write_string_attribute(const char* object, const char* name, const std::string& value) const;
+                       const void* data) const {
+    ctx_.write_attribute(file_.get(), object, name, type, space, data);
+  }
+  void write_string_attribute(const char* object, const char* name,
+                              const std::string& value) const {
+    ctx_.write_string_attribute(file_.get(), object, name, value);
+  }
   void write_string_dataset(const char* name, const std::string& value) const;
   Dataset create_series(std::string name, hid_t type, const std::vector<hsize_t>& row_shape,
                         const void* fill) const;
@@ -160,8 +163,8 @@ void H5mdFile::write_unit(const std::string& dataset, const char* quantity) cons
       // Variable-length, unlike H5MD's fixed-length strings: h5py reads those as bytes, which
       // MDAnalysis does not recognise as a unit.
       const char* unit = units_ == UnitLabels::kReduced ? label.reduced : label.mdanalysis;
-      const H5Handle type = string_type(H5T_VARIABLE);
-      write_attribute(dataset.c_str(), "unit", type.get(), dataspace({}).get(), &unit);
+      const H5Handle type = ctx_.string_type(H5T_VARIABLE);
+      write_attribute(dataset.c_str(), "unit", type.get(), ctx_.dataspace({}).get(), &unit);
       return;
     }
   throw std::logic_error(std::string("H5mdWriter: no unit for ") + quantity);
@@ -198,7 +201,7 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   create_group("/h5md/author");
   create_group("/h5md/creator");
   const std::array<int, 2> version = {1, 1};
-  write_attribute("/h5md", "version", H5T_NATIVE_INT, dataspace({2}).get(), version.data());
+  write_attribute("/h5md", "version", H5T_NATIVE_INT, ctx_.dataspace({2}).get(), version.data());
   write_string_attribute("/h5md/author", "name", meta.author);
   write_string_attribute("/h5md/creator", "name", meta.creator);
   write_string_attribute("/h5md/creator", "version", meta.creator_version);
@@ -206,7 +209,7 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   // H5MD's units module: the numbers are in reduced units whatever the labels say.
   create_group("/h5md/modules/units");
   const std::array<int, 2> units_version = {1, 0};
-  write_attribute("/h5md/modules/units", "version", H5T_NATIVE_INT, dataspace({2}).get(),
+  write_attribute("/h5md/modules/units", "version", H5T_NATIVE_INT, ctx_.dataspace({2}).get(),
                   units_version.data());
   write_string_attribute("/h5md/modules/units", "system",
                          "granjet reduced: length d (grain diameter), velocity u0 (jet speed), "
@@ -216,13 +219,13 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
   if (periodic && meta.periodic_box.size() != static_cast<std::size_t>(dimension_))
     throw std::invalid_argument("H5mdWriter: the periodic box needs one edge per dimension");
   create_group("/particles/all/box");
-  write_attribute("/particles/all/box", "dimension", H5T_NATIVE_INT, dataspace({}).get(),
+  write_attribute("/particles/all/box", "dimension", H5T_NATIVE_INT, ctx_.dataspace({}).get(),
                   &dimension_);
   std::string boundary;
   for (int d = 0; d < dimension_; ++d)
     boundary.append(periodic ? "periodic" : "none", 9);  // padded with NULs to 9
-  write_attribute("/particles/all/box", "boundary", string_type(9).get(),
-                  dataspace({static_cast<hsize_t>(dimension_)}).get(), boundary.data());
+  write_attribute("/particles/all/box", "boundary", ctx_.string_type(9).get(),
+                  ctx_.dataspace({static_cast<hsize_t>(dimension_)}).get(), boundary.data());
 
   // Rows of removed grains keep these fill values; -1 is H5MD's "no particle" id.
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -270,7 +273,7 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
     ctx_.check(H5Rcreate(&group, file_.get(), "/particles/all", H5R_OBJECT, -1), "reference",
                "/particles/all");
     write_attribute("/connectivity/contacts", "particles_group", H5T_STD_REF_OBJ,
-                    dataspace({}).get(), &group);
+                    ctx_.dataspace({}).get(), &group);
     sets_.normal_force =
         create_series("/contacts/normal_force/value", H5T_NATIVE_DOUBLE, {0, d}, &nan);
     sets_.tangential_force =
@@ -309,7 +312,7 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
 
   create_group("/parameters/granjet");
   write_string_attribute("/parameters/granjet", "backend", meta.backend);
-  write_attribute("/parameters/granjet", "dimension", H5T_NATIVE_INT, dataspace({}).get(),
+  write_attribute("/parameters/granjet", "dimension", H5T_NATIVE_INT, ctx_.dataspace({}).get(),
                   &dimension_);
   write_string_attribute("/parameters/granjet", "status", "running");
   write_string_dataset(kScene, meta.scene_ini);
@@ -325,8 +328,8 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
 
 // A dataset, not an attribute: the scene may exceed the 64 KiB attribute limit.
 void H5mdFile::write_string_dataset(const char* name, const std::string& value) const {
-  const H5Handle type = string_type(value.size() + 1);
-  const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), name, type.get(), dataspace({}).get(),
+  const H5Handle type = ctx_.string_type(value.size() + 1);
+  const H5Handle set = ctx_.own(H5Dcreate2(file_.get(), name, type.get(), ctx_.dataspace({}).get(),
                                            link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
                                 H5Dclose, "create", name);
   ctx_.check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()), "write",
@@ -435,8 +438,8 @@ void H5mdFile::read_first_row(const Dataset& set, double* out) const {
   ctx_.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
                                  count.data(), nullptr),
              "select a row of", set.name);
-  ctx_.check(H5Dread(set.handle.get(), H5T_NATIVE_DOUBLE, dataspace(count).get(), file_space.get(),
-                     H5P_DEFAULT, out),
+  ctx_.check(H5Dread(set.handle.get(), H5T_NATIVE_DOUBLE, ctx_.dataspace(count).get(),
+                     file_space.get(), H5P_DEFAULT, out),
              "read", set.name);
 }
 
@@ -458,7 +461,7 @@ void H5mdFile::write_checkpoint(StateArchive archive) {
   const auto store = [&](const std::string& name, hid_t type, std::size_t n, const void* data) {
     const std::string path = fresh + "/" + name;
     const H5Handle set = ctx_.own(
-        H5Dcreate2(file_.get(), path.c_str(), type, dataspace({static_cast<hsize_t>(n)}).get(),
+        H5Dcreate2(file_.get(), path.c_str(), type, ctx_.dataspace({static_cast<hsize_t>(n)}).get(),
                    link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
         H5Dclose, "create", path);
     if (n > 0)
@@ -555,41 +558,9 @@ std::filesystem::path H5mdFile::abandon(const std::string& reason) {
   return ctx_.file();
 }
 
-H5Handle H5mdFile::dataspace(const std::vector<hsize_t>& dims) const {
-  const hid_t space = dims.empty()
-                          ? H5Screate(H5S_SCALAR)
-                          : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
-  return ctx_.own(space, H5Sclose, "create", "a dataspace");
-}
-
-H5Handle H5mdFile::string_type(std::size_t size) const {
-  H5Handle type = ctx_.own(H5Tcopy(H5T_C_S1), H5Tclose, "create", "a string type");
-  ctx_.check(H5Tset_size(type.get(), size), "size", "a string type");
-  return type;
-}
-
 void H5mdFile::create_group(const char* name) const {
   ctx_.own(H5Gcreate2(file_.get(), name, link_props_.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
            "create", name);
-}
-
-void H5mdFile::write_attribute(const char* object, const char* name, hid_t type, hid_t space,
-                               const void* data) const {
-  const std::string what = std::string(object) + " attribute " + name;
-  // An attribute cannot change its size, so a new value (the status) replaces the old one.
-  if (H5Aexists_by_name(file_.get(), object, name, H5P_DEFAULT) > 0) {
-    ctx_.check(H5Adelete_by_name(file_.get(), object, name, H5P_DEFAULT), "replace", what);
-  }
-  const H5Handle attribute = ctx_.own(H5Acreate_by_name(file_.get(), object, name, type, space,
-                                                        H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                                      H5Aclose, "create", what);
-  ctx_.check(H5Awrite(attribute.get(), type, data), "write", what);
-}
-
-void H5mdFile::write_string_attribute(const char* object, const char* name,
-                                      const std::string& value) const {
-  write_attribute(object, name, string_type(value.size() + 1).get(), dataspace({}).get(),
-                  value.c_str());
 }
 
 H5mdFile::Dataset H5mdFile::create_series(std::string name, hid_t type,
@@ -650,9 +621,9 @@ void H5mdFile::append(Dataset& set, hsize_t valid, hid_t type, const void* data)
   ctx_.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
                                  count.data(), nullptr),
              "select a row of", set.name);
-  ctx_.check(
-      H5Dwrite(set.handle.get(), type, dataspace(count).get(), file_space.get(), H5P_DEFAULT, data),
-      "write", set.name);
+  ctx_.check(H5Dwrite(set.handle.get(), type, ctx_.dataspace(count).get(), file_space.get(),
+                      H5P_DEFAULT, data),
+             "write", set.name);
 }
 
 void H5mdFile::require_open() const {

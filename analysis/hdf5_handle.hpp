@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "core/errors.hpp"
 
@@ -77,6 +78,37 @@ class H5Context {
   }
   void check(herr_t status, std::string_view action, std::string_view object) const {
     if (status < 0) fail(action, object);
+  }
+
+  // A dataspace of shape `dims`, scalar when `dims` is empty.
+  H5Handle dataspace(const std::vector<hsize_t>& dims) const {
+    const hid_t space = dims.empty()
+                            ? H5Screate(H5S_SCALAR)
+                            : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    return own(space, H5Sclose, "create", "a dataspace");
+  }
+  // A C string type of `size` bytes, the trailing NUL counted (H5T_VARIABLE: variable length).
+  H5Handle string_type(std::size_t size) const {
+    H5Handle type = own(H5Tcopy(H5T_C_S1), H5Tclose, "create", "a string type");
+    check(H5Tset_size(type.get(), size), "size", "a string type");
+    return type;
+  }
+  // Attribute `name` of `object` in the open `file`. An attribute cannot change its size, so a
+  // new value replaces an existing one.
+  void write_attribute(hid_t file, const std::string& object, const char* name, hid_t type,
+                       hid_t space, const void* data) const {
+    const std::string what = object + " attribute " + name;
+    if (H5Aexists_by_name(file, object.c_str(), name, H5P_DEFAULT) > 0)
+      check(H5Adelete_by_name(file, object.c_str(), name, H5P_DEFAULT), "replace", what);
+    const H5Handle attribute = own(H5Acreate_by_name(file, object.c_str(), name, type, space,
+                                                     H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                   H5Aclose, "create", what);
+    check(H5Awrite(attribute.get(), type, data), "write", what);
+  }
+  void write_string_attribute(hid_t file, const std::string& object, const char* name,
+                              const std::string& value) const {
+    write_attribute(file, object, name, string_type(value.size() + 1).get(), dataspace({}).get(),
+                    value.c_str());
   }
 
   // The file, read-only and without HDF5's file lock, so that a user can look into a run's
