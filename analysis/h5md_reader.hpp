@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -39,9 +38,6 @@ FileSummary read_summary(const std::filesystem::path& file);
 // The run state stored by the last checkpoint (H5mdWriter::write_checkpoint). Throws
 // InputError naming the file when it has none.
 StateArchive read_checkpoint(const std::filesystem::path& file);
-
-// Human-readable, a few lines.
-void print_summary(const FileSummary& summary, std::ostream& out);
 
 // One stored frame, only its valid grains, sorted by id.
 template <int D>
