@@ -53,6 +53,12 @@ double carnahan_starling(double phi) {
 
 double henderson(double phi) { return (1.0 + phi * phi / 8.0) / ((1.0 - phi) * (1.0 - phi)); }
 
+double enskog_collision_frequency(double phi, double temperature, int dimension) {
+  const double z = dimension == 3 ? carnahan_starling(phi) : henderson(phi);
+  const double phi_chi = (z - 1.0) / (dimension == 3 ? 4.0 : 2.0);
+  return (dimension == 3 ? 24.0 : 8.0) * phi_chi * std::sqrt(temperature / std::numbers::pi);
+}
+
 double viscosity_star(double phi, double e) {
   const double g = chi(phi);
   const double c = c_star(e);

@@ -36,6 +36,11 @@ double cooling_per_collision(double e, int dimension);
 // (Henderson).
 double carnahan_starling(double phi);
 double henderson(double phi);
+// Enskog's collision frequency per grain of elastic hard spheres (disks) of unit diameter and
+// mass at temperature T: 4 sqrt(pi) n chi sqrt(T) in 3D, 2 sqrt(pi) n chi sqrt(T) in 2D, n the
+// number density, with the contact value chi that makes the equation of state above exact
+// (Z = 1 + 2^(D-1) phi chi): 24 phi chi sqrt(T/pi) and 8 phi chi sqrt(T/pi).
+double enskog_collision_frequency(double phi, double temperature, int dimension);
 
 // [5.4]-[5.11] Garzo-Dufty dimensionless shear viscosity eta*(phi, e) of inelastic hard spheres
 // (the curve [5.6] of figure F5.9).

@@ -308,4 +308,28 @@ template GasLattice<3> gas_lattice<3>(const GasSpec&);
 template Particles<2> build_initial_state<2>(const Scene&);
 template Particles<3> build_initial_state<3>(const Scene&);
 
+double jet_column_length(const Scene& scene) {
+  const JetSpec& j = scene.jet;
+  const double sites = static_cast<double>(j.grains) / j.phi_tilde;
+  if (scene.dimension == 2)
+    return sites * j.spacing * j.spacing * std::sqrt(3.0) / 2.0 / j.diameter;
+  const double section =
+      j.shape == JetShape::kRectangle ? j.area : std::numbers::pi / 4.0 * j.diameter * j.diameter;
+  return sites * std::pow(j.spacing, 3) / std::numbers::sqrt2 / section;
+}
+
+double target_grains_estimate(const Scene& scene) {
+  const WallSpec& w = scene.wall;
+  const double across = w.diameter / w.spacing;
+  if (scene.dimension == 2) return std::floor(across) + 1.0;
+  const double site_area = w.lattice == WallLattice::kHexagonal ? std::sqrt(3.0) / 2.0 : 1.0;
+  return std::round(std::numbers::pi / 4.0 * across * across / site_area);
+}
+
+double gas_box_edge(const Scene& scene) {
+  const double grain_volume = scene.dimension == 3 ? Dim<3>::volume(0.5) : Dim<2>::volume(0.5);
+  return std::pow(static_cast<double>(scene.gas.grains) * grain_volume / scene.gas.phi,
+                  1.0 / scene.dimension);
+}
+
 }  // namespace granjet

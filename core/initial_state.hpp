@@ -45,6 +45,15 @@ double grain_mass(const Scene& scene, GrainKind kind, double diameter) {
   return scene.jet.mass_by_volume ? std::pow(diameter, D) : 1.0;
 }
 
+// Sizes of a scene's initial state before it is built (run budgets, plans), where building it
+// could take a day: the jet column's length along its axis (jet.grains / jet.phi_tilde lattice
+// sites at the lattice's volume per site, fcc s^3/sqrt 2 or triangular s^2 sqrt(3)/2, over the
+// cross section), the target grains (the row's count in 2D, the disk's area over a site's area
+// in 3D) and the periodic box's edge (gas.grains at gas.phi).
+double jet_column_length(const Scene& scene);
+double target_grains_estimate(const Scene& scene);
+double gas_box_edge(const Scene& scene);
+
 extern template Particles<2> build_initial_state<2>(const Scene&);
 extern template Particles<3> build_initial_state<3>(const Scene&);
 

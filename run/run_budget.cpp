@@ -8,9 +8,10 @@
 #include <sstream>
 
 #include "analysis/kinetic_theory.hpp"
-#include "run/backend_factory.hpp"
 #include "core/errors.hpp"
+#include "core/initial_state.hpp"
 #include "core/number_text.hpp"
+#include "run/backend_factory.hpp"
 
 namespace granjet {
 namespace {
@@ -38,29 +39,6 @@ void refuse_above(double value, double limit, const std::string& key, const std:
                               number_text(limit) + unit);
 }
 
-double wall_grains(const Scene& s) {
-  const double across = s.wall.diameter / s.wall.spacing;
-  if (s.dimension == 2) return std::floor(across) + 1.0;
-  const double site_area = s.wall.lattice == WallLattice::kHexagonal ? std::sqrt(3.0) / 2.0 : 1.0;
-  return std::round(std::numbers::pi / 4.0 * across * across / site_area);
-}
-
-// The jet's length along its axis: the lattice sites it draws, at the fcc (3D) or triangular
-// (2D) volume per site, spread over its cross section.
-double jet_length(const Scene& s) {
-  const JetSpec& j = s.jet;
-  const double sites = static_cast<double>(j.grains) / j.phi_tilde;
-  if (s.dimension == 2) return sites * j.spacing * j.spacing * std::sqrt(3.0) / 2.0 / j.diameter;
-  const double section =
-      j.shape == JetShape::kRectangle ? j.area : std::numbers::pi / 4.0 * j.diameter * j.diameter;
-  return sites * std::pow(j.spacing, 3) / std::numbers::sqrt2 / section;
-}
-
-double gas_box_edge(const Scene& s) {
-  const double grain_volume = s.dimension == 3 ? std::numbers::pi / 6.0 : std::numbers::pi / 4.0;
-  return std::pow(static_cast<double>(s.gas.grains) * grain_volume / s.gas.phi, 1.0 / s.dimension);
-}
-
 void check_extent(const Scene& s) {
   // Farther out, positions lose the precision contacts need.
   const std::string d = " d";
@@ -69,7 +47,7 @@ void check_extent(const Scene& s) {
       refuse_above(static_cast<double>(s.jet.grains) / s.jet.phi_tilde, kMaxJetSites,
                    "jet.phi_tilde",
                    "the lattice sites drawn for the jet (jet.grains / jet.phi_tilde)");
-      refuse_above(jet_length(s), kMaxExtent, "jet.spacing",
+      refuse_above(jet_column_length(s), kMaxExtent, "jet.spacing",
                    "the jet's length (jet.grains / jet.phi_tilde sites of jet.spacing across "
                    "jet.diameter)",
                    d);
@@ -91,9 +69,10 @@ void check_memory(const Scene& s, double memory_bytes) {
   const double grains = estimated_grains(s);
   const double bytes = kBaseBytes + kBytesPerGrain * grains;
   if (bytes <= memory_bytes) return;
-  const std::string key = s.periodic()                                         ? "gas.grains"
-                          : wall_grains(s) > static_cast<double>(s.jet.grains) ? "wall.diameter"
-                                                                               : "jet.grains";
+  const std::string key = s.periodic() ? "gas.grains"
+                          : target_grains_estimate(s) > static_cast<double>(s.jet.grains)
+                              ? "wall.diameter"
+                              : "jet.grains";
   throw InputError(key, number_text(grains) + " grains would need about " +
                             number_text(bytes / 1e9) + " GB; this machine has " +
                             number_text(memory_bytes / 1e9) + " GB");
@@ -131,13 +110,8 @@ void check_duration(const Scene& s, const Backend& backend) {
     refuse_above(t_end / s.dt(), kMaxSteps, s.run.dt > 0.0 ? "run.dt" : "run.t_end",
                  "the time steps (run.t_end / run.dt)");
   if (backend.counts_events && s.periodic()) {
-    // Enskog's collision frequency per grain (d = m = 1): 24 phi chi sqrt(T/pi) in 3D,
-    // 8 phi chi sqrt(T/pi) in 2D, with phi chi from the equation of state Z = 1 + 2^(D-1) phi chi.
-    const double z = s.dimension == 3 ? analysis::kinetic::carnahan_starling(s.gas.phi)
-                                      : analysis::kinetic::henderson(s.gas.phi);
-    const double phi_chi = (z - 1.0) / (s.dimension == 3 ? 4.0 : 2.0);
     const double per_grain =
-        (s.dimension == 3 ? 24.0 : 8.0) * phi_chi * std::sqrt(s.gas.temperature / std::numbers::pi);
+        analysis::kinetic::enskog_collision_frequency(s.gas.phi, s.gas.temperature, s.dimension);
     refuse_above(0.5 * static_cast<double>(s.gas.grains) * per_grain * t_end, kMaxCollisions,
                  "gas.temperature",
                  "the collisions of gas.grains over run.t_end at gas.temperature (Enskog)");
@@ -184,7 +158,7 @@ double estimated_grains(const Scene& s) {
   switch (s.kind) {
     case SceneKind::kJet:
       return static_cast<double>(s.jet.grains) +
-             (s.wall.kind == WallKind::kPlate ? 0.0 : wall_grains(s));
+             (s.wall.kind == WallKind::kPlate ? 0.0 : target_grains_estimate(s));
     case SceneKind::kBinary:
       return 2.0;
     case SceneKind::kGas:

@@ -63,6 +63,23 @@ TEST(KineticTheory, CarnahanStarlingAndHenderson) {
   EXPECT_NEAR(carnahan_starling(0.3), 1.0 + 4.0 * 0.3 * chi(0.3), 1e-12);
 }
 
+TEST(KineticTheory, EnskogCollisionFrequency) {
+  // 3D: 4 sqrt(pi) n chi sqrt(T), n = phi / (pi/6), chi = (1 - phi/2)/(1 - phi)^3
+  // (Carnahan-Starling); 2D: 2 sqrt(pi) n chi sqrt(T), n = phi / (pi/4),
+  // chi = (1 - 7 phi/16)/(1 - phi)^2 (Henderson).
+  const double phi = 0.3, t = 2.0, root_pi = std::sqrt(std::numbers::pi);
+  const double n3 = phi / (std::numbers::pi / 6.0),
+               chi3 = (1.0 - phi / 2.0) / std::pow(1.0 - phi, 3);
+  EXPECT_NEAR(enskog_collision_frequency(phi, t, 3), 4.0 * root_pi * n3 * chi3 * std::sqrt(t),
+              1e-12);
+  const double n2 = phi / (std::numbers::pi / 4.0),
+               chi2 = (1.0 - 7.0 * phi / 16.0) / std::pow(1.0 - phi, 2);
+  EXPECT_NEAR(enskog_collision_frequency(phi, t, 2), 2.0 * root_pi * n2 * chi2 * std::sqrt(t),
+              1e-12);
+  // Dilute: chi -> 1 + 5 phi/2, so the Boltzmann frequency 24 phi sqrt(T/pi) within 0.25%.
+  EXPECT_NEAR(enskog_collision_frequency(1e-3, 1.0, 3) / (24e-3 / root_pi), 1.0025, 1e-5);
+}
+
 TEST(KineticTheory, Eq5_4_to_5_11_GarzoDuftyViscosity) {
   // Elastic dilute limit: eta* -> 1 (c* = 0, nu = chi = 1, zeta = 0, gamma = 0).
   EXPECT_NEAR(viscosity_star(1e-9, 1.0), 1.0, 1e-7);

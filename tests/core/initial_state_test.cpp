@@ -92,6 +92,59 @@ TEST(InitialState, KeptFractionIsPhiTilde) {
   EXPECT_NEAR(4000.0 / sites, 0.6, 0.02);
 }
 
+// The extent of the jet column along its axis, front to back grain centre.
+template <int D>
+double column_length(const Particles<D>& p) {
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind()[i] == GrainKind::kFree) {
+      lo = std::min(lo, p.position()[i][D == 3 ? 2 : 0]);
+      hi = std::max(hi, p.position()[i][D == 3 ? 2 : 0]);
+    }
+  return hi - lo;
+}
+
+// What budgets and plans know before building: the built state agrees.
+TEST(InitialState, SizesBeforeBuildingMatchTheBuiltState) {
+  Scene s;  // jet3d
+  Particles<3> p3 = build_initial_state<3>(s);
+  EXPECT_EQ(target_grains_estimate(s), static_cast<double>(count(p3, GrainKind::kWall)));
+  EXPECT_NEAR(jet_column_length(s) / column_length(p3), 1.0, 0.03);
+  s.wall.lattice = WallLattice::kSquare;
+  s.wall.spacing = 1.2;
+  p3 = build_initial_state<3>(s);
+  EXPECT_NEAR(target_grains_estimate(s) / static_cast<double>(count(p3, GrainKind::kWall)), 1.0,
+              0.03);
+  s.jet.shape = JetShape::kRectangle;
+  s.jet.aspect_ratio = 4.0;
+  s.jet.area = 16.0;
+  s.jet.grains = 4000;
+  // A cross section 2 d across holds fewer lattice sites than its area over a site's: the
+  // estimate, which counts by area, is a few percent long.
+  EXPECT_NEAR(jet_column_length(s) / column_length(build_initial_state<3>(s)), 1.0, 0.05);
+
+  Scene flat;  // jet2d
+  flat.dimension = 2;
+  flat.jet.diameter = 30;
+  flat.jet.grains = 8000;
+  flat.jet.spacing = 1.1;
+  flat.wall.diameter = 66;
+  const Particles<2> p2 = build_initial_state<2>(flat);
+  EXPECT_EQ(target_grains_estimate(flat), static_cast<double>(count(p2, GrainKind::kWall)));
+  EXPECT_NEAR(jet_column_length(flat) / column_length(p2), 1.0, 0.03);
+
+  // The gas box holds gas.grains at exactly gas.phi: the lattice's box has the estimate's volume.
+  Scene gas;
+  gas.kind = SceneKind::kGas;
+  gas.gas.grains = 4000;
+  gas.gas.phi = 0.3;
+  const Vec<3> box = gas_lattice<3>(gas.gas).box;
+  EXPECT_NEAR(box.prod(), std::pow(gas_box_edge(gas), 3), 1e-9 * box.prod());
+  gas.dimension = 2;
+  const Vec<2> area = gas_lattice<2>(gas.gas).box;
+  EXPECT_NEAR(area.prod(), std::pow(gas_box_edge(gas), 2), 1e-9 * area.prod());
+}
+
 TEST(InitialState, Jet2dBidisperseHalfSmallNoOverlap67TargetDisks) {
   Scene s;
   s.dimension = 2;

@@ -40,12 +40,9 @@ struct GasCase {
   double collisions_per_grain;  // in the measurement window
 };
 
-// Collision frequency per grain (Enskog, T = m = d = 1), to size the runs in collisions:
-// 3D 4 n chi sqrt(pi), 2D 2 n chi sqrt(pi) with n = phi / v.
+// Collision frequency per grain (Enskog, T = m = d = 1), to size the runs in collisions.
 double collision_frequency(int dimension, double phi) {
-  const double v = Dim<3>::volume(0.5), a = Dim<2>::volume(0.5);
-  if (dimension == 3) return 4.0 * phi / v * (1 - phi / 2) / std::pow(1 - phi, 3) * std::sqrt(M_PI);
-  return 2.0 * phi / a * (1 - 7.0 * phi / 16) / std::pow(1 - phi, 2) * std::sqrt(M_PI);
+  return analysis::kinetic::enskog_collision_frequency(phi, 1.0, dimension);
 }
 
 Scene gas_scene(const GasCase& c, double e, double t_end, double equilibration) {
