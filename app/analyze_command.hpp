@@ -1,7 +1,5 @@
 // `granjet analyze run.h5 [--window t0:t1] [--summary out.json]`: the measurements of model §6
-// from the frames stored in a run file. Stored frames hold no momentum transfers, so the
-// contact stress (and what is built on it: P, mu*, I, eta) is left out (NaN); inline analysis
-// during `granjet run` measures everything.
+// from the frames a file stores (run/frame_replay.hpp), what was analysed printed, and the JSON.
 #pragma once
 
 #include <filesystem>

@@ -1,0 +1,28 @@
+// Analysis after the run: the measurements of model §6 from the frames a file stores, a run's
+// own or each member's of an ensemble file (combined over the seeds as `granjet run --seeds`
+// does), written back into the file as /fields and /analysis with a .fields.xmf beside it.
+// Stored frames hold no momentum transfers, so the contact stress (and P, mu*, I, eta) is left
+// out (NaN); the inline analysis during a run measures everything.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <utility>
+
+#include "analysis/run_analysis.hpp"
+
+namespace granjet {
+
+struct Reanalysis {
+  analysis::EnsembleResult result;
+  std::size_t runs = 0;
+  std::size_t frames = 0;  // the frames in the window, over all runs
+};
+
+// `window` replaces the stored scene's [analysis] window. The members of an ensemble are left
+// as they are; the file is replaced only once its analysis is complete.
+Reanalysis reanalyse_frames(const std::filesystem::path& file,
+                            const std::optional<std::pair<double, double>>& window);
+
+}  // namespace granjet
