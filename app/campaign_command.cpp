@@ -2,13 +2,13 @@
 
 #include <ostream>
 
+#include "app/version.hpp"
 #include "campaign/campaign_file.hpp"
 #include "campaign/campaign_plan.hpp"
 #include "campaign/campaign_report.hpp"
 #include "campaign/campaign_runner.hpp"
 #include "campaign/child_process.hpp"
 #include "campaign/mpi_world.hpp"
-#include "app/version.hpp"
 #include "core/errors.hpp"
 
 namespace granjet {

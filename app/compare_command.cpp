@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "app/run_command.hpp"
 #include "run/backend_factory.hpp"
 #include "run/run_budget.hpp"
-#include "app/run_command.hpp"
 #include "run/scene_file.hpp"
 
 namespace granjet {

@@ -7,16 +7,16 @@
 #include <sstream>
 
 #include "analysis/file_lock.hpp"
-#include "analysis/h5md_reader.hpp"
 #include "app/analyze_command.hpp"
-#include "run/backend_factory.hpp"
 #include "app/campaign_command.hpp"
 #include "app/compare_command.hpp"
+#include "app/info_command.hpp"
 #include "app/run_command.hpp"
-#include "run/scene_file.hpp"
-#include "run/seed_list.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
+#include "run/backend_factory.hpp"
+#include "run/scene_file.hpp"
+#include "run/seed_list.hpp"
 
 namespace po = boost::program_options;
 
@@ -214,12 +214,7 @@ int info(const std::vector<std::string>& args) {
   desc.add_options()("file", po::value<std::string>()->required())("scene",
                                                                    po::bool_switch(&scene_only));
   const po::variables_map vm = parse(args, desc, "file");
-  const auto summary = granjet::analysis::read_summary(vm["file"].as<std::string>());
-  if (scene_only)
-    std::cout << summary.scene_ini;
-  else
-    granjet::analysis::print_summary(summary, std::cout);
-  return 0;
+  return granjet::info_command({vm["file"].as<std::string>(), scene_only}, std::cout);
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ class ProgressRows final : public analysis::RunObserver<D> {
  private:
   ProgressTable table_;
   IntervalSchedule schedule_;
-  double earlier_seconds_ = 0.0;  // of the invocations before this one
+  double earlier_seconds_ = 0.0;      // of the invocations before this one
   double earlier_cpu_seconds_ = 0.0;  // checkpoints before it was kept start it at 0
 };
 

@@ -37,7 +37,7 @@ struct ResumeOptions {
   std::vector<std::string> overrides;  // only the keys kResumableKeys names
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
-  bool log = true;  // appends to the run's log
+  bool log = true;       // appends to the run's log
   bool profile = false;  // as RunOptions::profile
 };
 

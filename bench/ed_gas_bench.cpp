@@ -4,10 +4,10 @@
 // the 2D jet after impact. The scene is built and equilibrated outside the timed loop.
 #include <benchmark/benchmark.h>
 
-#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
 #include "event_driven/ed_simulator.hpp"
 #include "event_driven/scene_support.hpp"
+#include "run/scene_file.hpp"
 
 namespace {
 

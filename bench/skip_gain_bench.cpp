@@ -5,8 +5,8 @@
 // z = 0 (its jet axis x turned onto z, so the removal region matches). particle-steps/s.
 #include <benchmark/benchmark.h>
 
-#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
+#include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "run/seed_list.hpp"
 #include "core/errors.hpp"
+#include "run/seed_list.hpp"
 
 namespace granjet {
 namespace {

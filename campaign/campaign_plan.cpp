@@ -8,12 +8,12 @@
 #include <sstream>
 #include <utility>
 
-#include "run/backend_factory.hpp"
-#include "run/run_budget.hpp"
-#include "run/scene_file.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
 #include "core/jet_geometry.hpp"
+#include "run/backend_factory.hpp"
+#include "run/run_budget.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "analysis/h5md_reader.hpp"
-#include "run/backend_factory.hpp"
 #include "campaign/campaign_manifest.hpp"
+#include "run/backend_factory.hpp"
 #include "run/ensemble_output.hpp"
 #include "run/scene_file.hpp"
 

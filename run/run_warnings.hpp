@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "run/backend_factory.hpp"
 #include "core/scene.hpp"
+#include "run/backend_factory.hpp"
 
 namespace granjet {
 

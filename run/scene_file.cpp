@@ -304,7 +304,8 @@ const std::vector<Key>& keys() {
     k.push_back(real_key("gas.sample_interval", "sim time between temperature samples",
                          FIELD(gas.sample_interval), kPositive));
     k.push_back(choice_key<RestitutionLaw>(
-        "ed.restitution_law", "event_driven restitution law (docs/model.md §8)", FIELD(ed.restitution_law),
+        "ed.restitution_law", "event_driven restitution law (docs/model.md §8)",
+        FIELD(ed.restitution_law),
         {{"constant", RestitutionLaw::kConstant},
          {"velocity_dependent", RestitutionLaw::kVelocityDependent},
          {"tc_model", RestitutionLaw::kTcModel}}));

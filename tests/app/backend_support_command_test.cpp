@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "analysis/h5md_reader.hpp"
-#include "run/scene_file.hpp"
 #include "command_fixture.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <sstream>
 
-#include "run/scene_file.hpp"
 #include "core/errors.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

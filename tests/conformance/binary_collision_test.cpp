@@ -4,8 +4,8 @@
 // backend's 0.5% on e propagates to 2 e^2/(1 - e^2) times that on the loss.
 #include <gtest/gtest.h>
 
-#include "run/backend_factory.hpp"
 #include "backends.hpp"
+#include "run/backend_factory.hpp"
 
 namespace granjet {
 namespace {

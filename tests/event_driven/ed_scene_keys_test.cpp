@@ -4,8 +4,8 @@
 
 #include <sstream>
 
-#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

@@ -11,13 +11,13 @@
 #include <set>
 #include <utility>
 
-#include "run/scene_file.hpp"
 #include "core/initial_state.hpp"
 #include "core/random.hpp"
 #include "core/state_archive.hpp"
 #include "event_driven/ed_simulator.hpp"
 #include "event_driven/neighbour_shells.hpp"
 #include "event_driven/scene_support.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet::ed {
 namespace {

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "analysis/h5md_writer.hpp"
-#include "run/backend_factory.hpp"
 #include "campaign/campaign_plan.hpp"
 #include "campaign/campaign_runner.hpp"
-#include "run/scene_file.hpp"
 #include "core/errors.hpp"
+#include "run/backend_factory.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {

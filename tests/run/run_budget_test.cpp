@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "run/scene_file.hpp"
 #include "core/errors.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet {
 namespace {
@@ -86,7 +86,8 @@ TEST(RunBudget, OutputBytesAboveTheLimitAreRefusedUnlessRaised) {
 }
 
 // [3.1]: a linear contact at normal speed v overlaps by at most v t_c / pi; beyond
-// run.max_overlap of the radius the soft DEM would blow up at step 0, so the scene is refused first.
+// run.max_overlap of the radius the soft DEM would blow up at step 0, so the scene is refused
+// first.
 TEST(RunBudget, SoftContactsTooFastForTheirContactTimeAreRefused) {
   // rms relative speed sqrt(2 D T) = sqrt(600) = 24.5: overlap 0.78 d > 0.25 d.
   expect_refused("gas3d.ini", {"gas.temperature=100"}, "soft_dem", "gas.temperature", "0.779");

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "run/backend_factory.hpp"
 #include "run/scene_file.hpp"
-#include "core/errors.hpp"
 #include "soft_dem/hertz_mindlin.hpp"
 #include "two_grains.hpp"
 

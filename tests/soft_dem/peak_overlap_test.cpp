@@ -9,9 +9,9 @@
 #include <numbers>
 #include <string>
 
-#include "run/run_budget.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
+#include "run/run_budget.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "two_grains.hpp"
 

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "../soft_dem/two_grains.hpp"
-#include "run/backend_factory.hpp"
 #include "core/errors.hpp"
+#include "run/backend_factory.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"
 #include "stability_common.hpp"

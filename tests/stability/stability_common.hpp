@@ -19,9 +19,9 @@
 #include <thread>
 #include <vector>
 
-#include "run/scene_file.hpp"
 #include "core/particles.hpp"
 #include "core/scene.hpp"
+#include "run/scene_file.hpp"
 
 namespace granjet::stability {
 
