@@ -12,8 +12,7 @@
 #include "core/initial_state.hpp"
 #include "core/jet_geometry.hpp"
 #include "soft_dem/contact_coefficients.hpp"
-#include "soft_dem/hertz_mindlin.hpp"
-#include "soft_dem/linear_spring_dashpot.hpp"
+#include "soft_dem/contact_laws.hpp"
 
 namespace granjet::dem {
 
@@ -621,22 +620,6 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
 }
 
 namespace {
-
-// A contact law, as the template the factory instantiates.
-template <template <int, bool> class LawOf>
-struct ContactLaw {};
-
-// Calls choose(ContactLaw<...>{}) with the law of contact.model: where laws are registered.
-template <class Choose>
-decltype(auto) with_contact_law(ContactModel model, Choose&& choose) {
-  switch (model) {
-    case ContactModel::kHertz:
-      return choose(ContactLaw<HertzMindlin>{});
-    case ContactModel::kLinear:
-      break;
-  }
-  return choose(ContactLaw<LinearSpringDashpot>{});
-}
 
 // The periodic gas scenes' box (gas_lattice's), which must hold three neighbour cells across.
 template <int D>

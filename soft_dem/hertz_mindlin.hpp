@@ -45,6 +45,7 @@
 #include "core/errors.hpp"
 #include "core/scene.hpp"
 #include "soft_dem/contact_geometry.hpp"
+#include "soft_dem/coulomb_tangential.hpp"
 
 namespace granjet::dem {
 
@@ -186,20 +187,12 @@ struct HertzMindlinOf {
     const double f_n = std::max(c.normal_floor, 2.0 / 3.0 * s_n * g.overlap - c_n * v_n);
     V f = f_n * g.n;
     if constexpr (kFriction) {
-      const V v_t = v_rel - v_n * g.n;
-      shear += dt * v_t;
-      shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
+      // Mindlin's k_t and c_t grow with the contact radius. A contact that slides has k_t > 0:
+      // at a = 0 the trial force is 0 and does not exceed the limit, so 1/k_t's infinity is
+      // never selected.
       const double k_t = c.spring_ratio * s_n, c_t = c.damping_ratio * c_n;
-      const V trial = -k_t * shear - c_t * v_t;
-      const double limit = c.mu * std::abs(f_n);
-      const double f_t2 = trial.squaredNorm();
-      // A contact that slides has k_t > 0: at a = 0 the trial force is 0 and does not exceed
-      // the limit, so the division's infinity is never selected.
-      const bool slides = f_t2 > limit * limit;
-      const V sliding = trial * (limit / std::sqrt(f_t2));
-      const V f_t = select_components<D>(slides, sliding, trial);
-      shear = select_components<D>(slides, V(-(sliding + c_t * v_t) * (1.0 / k_t)), shear);
-      f += f_t;
+      f += coulomb_tangential<D, V>(g.n, v_rel, v_n, shear, dt, k_t, c_t, 1.0 / k_t,
+                                    c.mu * std::abs(f_n));
     }
     return f;
   }

@@ -33,6 +33,7 @@
 #include "core/scene.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 #include "soft_dem/contact_geometry.hpp"
+#include "soft_dem/coulomb_tangential.hpp"
 
 namespace granjet::dem {
 
@@ -81,22 +82,9 @@ struct LinearSpringDashpot {
     // (contact.clamp_normal).
     const double f_n = std::max(c.normal_floor, c.kn * g.overlap - c.eta_n * v_n);
     V f = f_n * g.n;
-    if constexpr (kFriction) {
-      const V v_t = v_rel - v_n * g.n;
-      shear += dt * v_t;
-      shear -= shear.dot(g.n) * g.n;  // keep u_t in the tangent plane as the contact turns
-      // [3.2] trial tangential force, [3.3] Coulomb: slide at mu_p |F_n| along the trial.
-      // Both outcomes are computed and one is selected: in a jet about half the contacts
-      // slide, in no order a branch predictor could learn.
-      const V trial = -c.kt * shear - c.eta_t * v_t;
-      const double limit = c.mu * std::abs(f_n);
-      const double f_t2 = trial.squaredNorm();
-      const bool slides = f_t2 > limit * limit;
-      const V sliding = trial * (limit / std::sqrt(f_t2));
-      const V f_t = select_components<D>(slides, sliding, trial);
-      shear = select_components<D>(slides, V(-(sliding + c.eta_t * v_t) * inv_kt), shear);
-      f += f_t;
-    }
+    if constexpr (kFriction)
+      f += coulomb_tangential<D, V>(g.n, v_rel, v_n, shear, dt, c.kt, c.eta_t, inv_kt,
+                                    c.mu * std::abs(f_n));
     return f;
   }
 

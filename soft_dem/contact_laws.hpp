@@ -1,0 +1,28 @@
+// The registry of soft contact laws: where a value of contact.model becomes a law type. Any
+// backend that evaluates soft contacts includes it; each law is one header (the prototype,
+// with the interface a law provides, is linear_spring_dashpot.hpp) and one case below.
+#pragma once
+
+#include "core/scene.hpp"
+#include "soft_dem/hertz_mindlin.hpp"
+#include "soft_dem/linear_spring_dashpot.hpp"
+
+namespace granjet::dem {
+
+// A contact law, as the template Law<D, kFriction> a backend instantiates.
+template <template <int, bool> class LawOf>
+struct ContactLaw {};
+
+// Calls choose(ContactLaw<...>{}) with the law of contact.model.
+template <class Choose>
+decltype(auto) with_contact_law(ContactModel model, Choose&& choose) {
+  switch (model) {
+    case ContactModel::kHertz:
+      return choose(ContactLaw<HertzMindlin>{});
+    case ContactModel::kLinear:
+      break;
+  }
+  return choose(ContactLaw<LinearSpringDashpot>{});
+}
+
+}  // namespace granjet::dem
