@@ -10,7 +10,6 @@
 
 #include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
-#include "analysis/scene_measurements.hpp"
 #include "app/progress_rows.hpp"
 #include "app/run_log.hpp"
 #include "app/version.hpp"
@@ -27,6 +26,7 @@
 #include "run/run_profile.hpp"
 #include "run/run_warnings.hpp"
 #include "run/scene_file.hpp"
+#include "run/scene_kinds.hpp"
 
 namespace granjet {
 namespace {
@@ -232,7 +232,7 @@ int run_scene(const Scene& requested, const RunOptions& options,
   const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
 
   const std::vector<std::unique_ptr<analysis::RunObserver<D>>> measurements =
-      analysis::scene_measurements(scene, *sim);
+      scene_measurements(scene, *sim);
   const std::unique_ptr<analysis::H5mdWriter<D>> writer =
       open_run_file<D>(out_file, scene, requested_ini(requested, support), options,
                        sim->particles().size(), resume_from != nullptr);

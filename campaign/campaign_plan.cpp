@@ -14,6 +14,7 @@
 #include "run/backend_factory.hpp"
 #include "run/run_budget.hpp"
 #include "run/scene_file.hpp"
+#include "run/scene_kinds.hpp"
 
 namespace granjet {
 namespace {
@@ -55,11 +56,8 @@ std::string point_label(const std::vector<const CampaignKey*>& swept,
 // --quick: the same scene over a fraction of its simulated time, the windows scaled alike.
 std::vector<std::string> quick_overrides(const Scene& s, double fraction) {
   std::vector<std::string> o{"run.t_end=" + exact(fraction * s.run.t_end)};
-  if (s.kind == SceneKind::kJet) {
-    o.push_back("analysis.window_start=" + exact(fraction * s.analysis.window_start));
-    o.push_back("analysis.window_end=" + exact(fraction * s.analysis.window_end));
-  }
-  if (s.periodic()) o.push_back("gas.equilibration=" + exact(fraction * s.gas.equilibration));
+  for (const auto& [key, time] : scene_kind(s.kind).scaled_times(s))
+    o.push_back(key + "=" + exact(fraction * time));
   return o;
 }
 

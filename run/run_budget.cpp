@@ -3,8 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 #include <sstream>
 
 #include "analysis/kinetic_theory.hpp"
@@ -12,6 +10,7 @@
 #include "core/initial_state.hpp"
 #include "core/number_text.hpp"
 #include "run/backend_factory.hpp"
+#include "run/scene_kinds.hpp"
 
 namespace granjet {
 namespace {
@@ -40,33 +39,16 @@ void refuse_above(double value, double limit, const std::string& key, const std:
 }
 
 void check_extent(const Scene& s) {
+  const SceneKindTraits& kind = scene_kind(s.kind);
+  const SceneQuantity sites = kind.sites(s);
+  if (!sites.key.empty()) refuse_above(sites.value, kMaxJetSites, sites.key, sites.what);
   // Farther out, positions lose the precision contacts need.
-  const std::string d = " d";
-  switch (s.kind) {
-    case SceneKind::kJet:
-      refuse_above(static_cast<double>(s.jet.grains) / s.jet.phi_tilde, kMaxJetSites,
-                   "jet.phi_tilde",
-                   "the lattice sites drawn for the jet (jet.grains / jet.phi_tilde)");
-      refuse_above(jet_column_length(s), kMaxExtent, "jet.spacing",
-                   "the jet's length (jet.grains / jet.phi_tilde sites of jet.spacing across "
-                   "jet.diameter)",
-                   d);
-      refuse_above(s.jet.gap, kMaxExtent, "jet.gap", "the gap", d);
-      refuse_above(s.wall.diameter, kMaxExtent, "wall.diameter", "the target's diameter", d);
-      break;
-    case SceneKind::kBinary:
-      refuse_above(s.binary.gap, kMaxExtent, "binary.gap", "the gap", d);
-      break;
-    case SceneKind::kGas:
-    case SceneKind::kHcs:
-      refuse_above(gas_box_edge(s), kMaxExtent, "gas.phi", "the box edge (gas.grains at gas.phi)",
-                   d);
-      break;
-  }
+  for (const SceneQuantity& length : kind.lengths(s))
+    refuse_above(length.value, kMaxExtent, length.key, length.what, " d");
 }
 
 void check_memory(const Scene& s, double memory_bytes) {
-  const double grains = estimated_grains(s);
+  const double grains = scene_kind(s.kind).grains(s);
   const double bytes = kBaseBytes + kBytesPerGrain * grains;
   if (bytes <= memory_bytes) return;
   const std::string key = s.periodic() ? "gas.grains"
@@ -78,19 +60,12 @@ void check_memory(const Scene& s, double memory_bytes) {
                             number_text(memory_bytes / 1e9) + " GB");
 }
 
-// A head-on contact at the scene's characteristic speed (the jet's, the binary's, or the gas's
-// rms relative speed sqrt(2 D T), with T = sum m v^2 / (D N)) overlaps by at most what the
+// A head-on contact at the scene's hardest speed (scene_kinds) overlaps by at most what the
 // backend's contact law says (for [3.1] with [3.4], v t_c / pi).
 void check_soft_overlap(const Scene& s, double (*peak_overlap)(const Scene&, double)) {
-  double speed = s.jet.speed;
-  std::string key = "jet.speed";
-  if (s.kind == SceneKind::kBinary) {
-    speed = s.binary.speed;
-    key = "binary.speed";
-  } else if (s.periodic()) {
-    speed = std::sqrt(2.0 * s.dimension * s.gas.temperature);
-    key = "gas.temperature";
-  }
+  const SceneQuantity contact = scene_kind(s.kind).contact_speed(s);
+  const double speed = contact.value;
+  const std::string& key = contact.key;
   const double smaller_radius =
       0.5 * (s.monodisperse() ? 1.0 : std::min(1.0, s.jet.small_diameter));
   const double overlap = peak_overlap(s, speed);
@@ -106,7 +81,7 @@ void check_soft_overlap(const Scene& s, double (*peak_overlap)(const Scene&, dou
 void check_duration(const Scene& s, const Backend& backend) {
   const double t_end = s.run.t_end;
   // A time-stepped backend steps by dt; an event-driven binary run is sampled every dt too.
-  if (!backend.counts_events || s.kind == SceneKind::kBinary)
+  if (!backend.counts_events || scene_kind(s.kind).sampled_every_step)
     refuse_above(t_end / s.dt(), kMaxSteps, s.run.dt > 0.0 ? "run.dt" : "run.t_end",
                  "the time steps (run.t_end / run.dt)");
   if (backend.counts_events && s.periodic()) {
@@ -120,15 +95,8 @@ void check_duration(const Scene& s, const Backend& backend) {
   refuse_above(frames, kMaxFrames, "output.interval", "the frames (run.t_end / output.interval)");
   refuse_above(t_end / s.run.progress_interval, kMaxProgressRows, "run.progress_interval",
                "the progress rows (run.t_end / run.progress_interval)");
-  if (s.periodic())
-    refuse_above((t_end - s.gas.equilibration) / s.gas.sample_interval, kMaxSamples,
-                 "gas.sample_interval",
-                 "the temperature samples (run.t_end / gas.sample_interval)");
-  if (s.kind == SceneKind::kJet && s.analysis.enabled)
-    refuse_above((std::min(t_end, s.analysis.window_end) - s.analysis.window_start) /
-                     s.analysis.sample_interval,
-                 kMaxSamples, "analysis.sample_interval",
-                 "the analysis samples (window / analysis.sample_interval)");
+  const SceneQuantity samples = scene_kind(s.kind).samples(s);
+  if (!samples.key.empty()) refuse_above(samples.value, kMaxSamples, samples.key, samples.what);
   // Every frame stores id, present, radius, position and velocity of every grain, and what
   // output.fields adds: omega, force, and the contacts, at most one per grain pair of a dense
   // packing (3 per grain in 3D, 2 in 2D), each two ids, two force vectors and an overlap.
@@ -137,12 +105,13 @@ void check_duration(const Scene& s, const Backend& backend) {
   if (s.output.omega) per_grain += d == 3 ? 3.0 : 1.0;
   if (s.output.force) per_grain += d;
   if (s.output.contacts) per_grain += (d == 3 ? 3.0 : 2.0) * (3.0 + 2.0 * d);
-  const double frame_bytes = estimated_grains(s) * per_grain * 8.0;
+  const double grains = scene_kind(s.kind).grains(s);
+  const double frame_bytes = grains * per_grain * 8.0;
   if (frames * frame_bytes > s.output.max_bytes)
     throw InputError(
         "output.max_bytes",
-        number_text(frames) + " frames of " + number_text(estimated_grains(s)) +
-            " grains need about " + number_text(frames * frame_bytes / 1e9) +
+        number_text(frames) + " frames of " + number_text(grains) + " grains need about " +
+            number_text(frames * frame_bytes / 1e9) +
             " GB, more than output.max_bytes = " + number_text(s.output.max_bytes / 1e9) +
             " GB; store fewer frames (output.interval) or raise it");
 }
@@ -152,20 +121,6 @@ void check_duration(const Scene& s, const Backend& backend) {
 double physical_memory_bytes() {
   return static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
          static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-}
-
-double estimated_grains(const Scene& s) {
-  switch (s.kind) {
-    case SceneKind::kJet:
-      return static_cast<double>(s.jet.grains) +
-             (s.wall.kind == WallKind::kPlate ? 0.0 : target_grains_estimate(s));
-    case SceneKind::kBinary:
-      return 2.0;
-    case SceneKind::kGas:
-    case SceneKind::kHcs:
-      return static_cast<double>(s.gas.grains);
-  }
-  return 0.0;
 }
 
 void check_run_budget(const Scene& scene, const std::string& backend_name, double memory_bytes) {

@@ -20,7 +20,4 @@ void check_run_budget(const Scene& scene, const std::string& backend, double mem
 // The machine's physical memory in bytes.
 double physical_memory_bytes();
 
-// Grains a scene starts with: jet and target, or the gas; an estimate for the target's disk.
-double estimated_grains(const Scene& scene);
-
 }  // namespace granjet

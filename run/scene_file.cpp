@@ -15,6 +15,7 @@
 
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "run/scene_kinds.hpp"
 
 namespace granjet {
 namespace {
@@ -175,12 +176,12 @@ const std::vector<Key>& keys() {
     k.push_back({"scene.name", "label stored in outputs",
                  [](Scene& s, const std::string& v) { s.name = v; },
                  [](const Scene& s) { return s.name; }});
-    k.push_back(choice_key<SceneKind>(
-        "scene.kind", "what to build (gas, hcs: periodic boxes, event_driven backend)", FIELD(kind),
-        {{"jet", SceneKind::kJet},
-         {"binary", SceneKind::kBinary},
-         {"gas", SceneKind::kGas},
-         {"hcs", SceneKind::kHcs}}));
+    std::vector<std::pair<std::string, SceneKind>> kinds;
+    for (const SceneKindTraits& kind : scene_kinds()) kinds.emplace_back(kind.word, kind.kind);
+    k.push_back(choice_key<SceneKind>("scene.kind",
+                                      "what to build (gas, hcs: periodic boxes, event_driven "
+                                      "backend)",
+                                      FIELD(kind), kinds));
     k.push_back(choice_key<int>("scene.dimension", "2 (disks) or 3 (spheres)", FIELD(dimension),
                                 {{"2", 2}, {"3", 3}}));
     k.push_back(choice_key<ContactModel>(

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "run/scene_file.hpp"
+#include "run/scene_kinds.hpp"
 
 namespace granjet {
 namespace {
@@ -40,7 +41,7 @@ TEST(RunBudget, ShippedScenesPassOnBothBackends) {
 TEST(RunBudget, MemoryIsEstimatedFromTheGrainsAndNamesTheirKey) {
   // 20,000 jet grains and a 22 d hexagonal target of about 440 grains.
   const Scene jet = load_scene(kScenes + "/jet3d.ini", {});
-  EXPECT_NEAR(estimated_grains(jet), 20000 + 439, 10);
+  EXPECT_NEAR(scene_kind(jet.kind).grains(jet), 20000 + 439, 10);
   expect_refused("jet3d.ini", {}, "soft_dem", "jet.grains", "GB; this machine has", 1e7);
   expect_refused("jet3d.ini", {"jet.grains=100000000"}, "soft_dem", "jet.grains",
                  "grains would need");
