@@ -88,14 +88,15 @@ RunCost estimate_cost(const Scene& scene, const std::string& backend) {
   const auto [grains, mean_grains] =
       with_dimension(scene.dimension, [&](auto d) { return grains_over_run<d>(scene); });
   c.grains = grains;
-  if (backend == "event_driven") {
+  const Backend& b = backend_named(backend);
+  const double rate = scene.dimension == 2 ? b.rate_2d : b.rate_3d;
+  if (b.counts_events) {
     c.grain_time = mean_grains * scene.run.t_end;
-    c.seconds = c.grain_time / kEventDrivenGrainTimePerSecond;
+    c.seconds = c.grain_time / rate;
   } else {
     c.steps = static_cast<std::int64_t>(std::ceil(scene.run.t_end / scene.dt() - 0.5));
     c.particle_steps = mean_grains * static_cast<double>(c.steps);
-    c.seconds = c.particle_steps / (scene.dimension == 2 ? kSoftParticleStepsPerSecond2d
-                                                         : kSoftParticleStepsPerSecond3d);
+    c.seconds = c.particle_steps / rate;
   }
   return c;
 }

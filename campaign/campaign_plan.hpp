@@ -77,11 +77,4 @@ CampaignPlan plan_campaign(const CampaignFile& campaign, const PlanOptions& opti
 // stored scene and backend give the same hash is that run's output.
 std::string scene_hash(const std::string& backend, const std::string& scene_ini);
 
-// The one-core rates behind RunCost::seconds: a guide for planning, not a benchmark, rounded from
-// what `granjet run` reported for the shipped jets at the commit that introduced campaigns
-// (particle_steps_per_second counts the grains present).
-inline constexpr double kSoftParticleStepsPerSecond3d = 6.5e7;
-inline constexpr double kSoftParticleStepsPerSecond2d = 9.5e7;
-inline constexpr double kEventDrivenGrainTimePerSecond = 5.0e5;
-
 }  // namespace granjet

@@ -7,6 +7,8 @@
 #include <ostream>
 #include <queue>
 
+#include "run/backend_factory.hpp"
+
 namespace granjet {
 namespace {
 
@@ -117,11 +119,13 @@ void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int j
       << " runs in " << plan.ensembles.size() << " ensembles; about "
       << format_duration(total.seconds) << " of CPU time, " << format_duration(makespan(plan, jobs))
       << " of wall time on " << jobs << " parallel slot(s)\n"
-      << printf_string(
-             "(estimates from %.2g particle-steps/s (soft DEM, 3D), %.2g (2D) and %.2g grain "
-             "time units/s (event-driven) per core)\n",
-             kSoftParticleStepsPerSecond3d, kSoftParticleStepsPerSecond2d,
-             kEventDrivenGrainTimePerSecond);
+      << "(estimates per core from";
+  for (const std::string& name : backend_names()) {
+    const Backend& b = backend_named(name);
+    out << printf_string(" %.2g (2D) and %.2g (3D) %s (%s)", b.rate_2d, b.rate_3d,
+                         b.counts_events ? "grain time units/s" : "particle-steps/s", name.c_str())
+        << (name == backend_names().back() ? ")\n" : ";");
+  }
 }
 
 void print_outcome_table(const CampaignPlan& plan, const std::vector<RunOutcome>& outcomes,

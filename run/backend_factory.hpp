@@ -18,6 +18,14 @@ struct Backend {
   // Event-driven: its work is events and collisions (progress rows, summary), not time steps
   // and contacts.
   bool counts_events = false;
+  // One core's rate for campaign plans, a guide rather than a benchmark, rounded from what
+  // `granjet run` reported for the shipped jets: particle-steps/s counting the grains present
+  // (time-stepped) or grain-time units/s (event-driven), in 2D and 3D.
+  double rate_2d = 0.0;
+  double rate_3d = 0.0;
+  // Memory per grain at its peak, for the run budget: measured 0.6-1 kB on jet3d and gas3d,
+  // doubled for the contacts and lists of a dense pile.
+  double bytes_per_grain = 0.0;
   // Soft grains: the deepest overlap of a head-on contact at relative normal speed v (the run
   // budget refuses scenes beyond run.max_overlap); null for hard grains, which never overlap.
   double (*peak_overlap)(const Scene& scene, double v) = nullptr;

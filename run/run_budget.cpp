@@ -25,9 +25,7 @@ constexpr double kMaxSamples = 1e7;
 constexpr double kMaxJetSites = 1e9;  // lattice sites drawn to build the jet
 // Farther out, double positions lose the 1e-9 d that contacts of 1e-3 d overlap need.
 constexpr double kMaxExtent = 1e7;
-// Measured peaks (jet3d, gas3d) are 0.6-1 kB a grain; contacts and lists of a dense pile add.
-constexpr double kBytesPerGrain = 2048.0;
-constexpr double kBaseBytes = 64e6;
+constexpr double kBaseBytes = 64e6;  // the program itself
 
 // "KEY: WHAT would be VALUE UNIT; at most LIMIT UNIT".
 void refuse_above(double value, double limit, const std::string& key, const std::string& what,
@@ -47,9 +45,9 @@ void check_extent(const Scene& s) {
     refuse_above(length.value, kMaxExtent, length.key, length.what, " d");
 }
 
-void check_memory(const Scene& s, double memory_bytes) {
+void check_memory(const Scene& s, const Backend& backend, double memory_bytes) {
   const double grains = scene_kind(s.kind).grains(s);
-  const double bytes = kBaseBytes + kBytesPerGrain * grains;
+  const double bytes = kBaseBytes + backend.bytes_per_grain * grains;
   if (bytes <= memory_bytes) return;
   const std::string key = s.periodic() ? "gas.grains"
                           : target_grains_estimate(s) > static_cast<double>(s.jet.grains)
@@ -125,7 +123,8 @@ double physical_memory_bytes() {
 
 void check_run_budget(const Scene& scene, const std::string& backend_name, double memory_bytes) {
   const Backend& backend = backend_named(backend_name);
-  check_memory(scene, memory_bytes);  // first: it names the grain count, the likeliest cause
+  check_memory(scene, backend,
+               memory_bytes);  // first: it names the grain count, the likeliest cause
   check_extent(scene);
   if (backend.peak_overlap) check_soft_overlap(scene, backend.peak_overlap);
   check_duration(scene, backend);
