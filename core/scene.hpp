@@ -51,6 +51,8 @@ struct ContactSpec {
   // of a contact (the overlap still positive, closing faster than k_n/eta_n allows). The study
   // does not say whether it clamped it at zero; [3.4] and [3.5] assume it did not.
   bool clamp_normal = false;
+  // mu_r of the rolling resistance (soft_dem/rolling_resistance.hpp; not in the study): 0, none.
+  double rolling_friction = 0.0;
 };
 
 struct RunSpec {

@@ -37,6 +37,10 @@ SceneSupport scene_support(const Scene& scene) {
   if (scene.frictional())
     support.notes.push_back("contact.friction = " + number_text(scene.contact.friction) +
                             " is ignored (hard grains are frictionless)");
+  if (scene.contact.rolling_friction > 0.0)
+    support.notes.push_back(
+        "contact.rolling_friction = " + number_text(scene.contact.rolling_friction) +
+        " is ignored (hard grains do not turn)");
   support.notes.push_back(
       "contact.model, contact.contact_time, run.dt, run.integrator and run.skin have no "
       "hard-core meaning and are ignored");

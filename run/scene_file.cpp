@@ -205,6 +205,10 @@ const std::vector<Key>& keys() {
         "true: the normal force never pulls (F_n >= 0), a choice the study leaves open; it "
         "raises e above [3.5]",
         FIELD(contact.clamp_normal), {{"false", false}, {"true", true}}));
+    k.push_back(real_key("contact.rolling_friction",
+                         "rolling resistance mu_r: a torque mu_r R* |F_n| against the grains' "
+                         "rolling on each other (0: none; not in the study)",
+                         FIELD(contact.rolling_friction), kNonNegative));
     k.push_back(real_key("run.t_end", "simulated time in d/u0", FIELD(run.t_end), kPositive));
     k.push_back(
         real_key("run.dt", "time step (0: 0.02 t_c, the study's)", FIELD(run.dt), kNonNegative));
@@ -560,6 +564,11 @@ void validate_scene(const Scene& s) {
     throw InputError("run.dt", format_number(s.dt()) +
                                    " must be smaller than contact.contact_time = " +
                                    format_number(s.contact.contact_time));
+  if (s.contact.rolling_friction > 0.0 && s.contact.friction == 0.0)
+    throw InputError("contact.rolling_friction",
+                     format_number(s.contact.rolling_friction) +
+                         " needs contact.friction > 0: without sliding friction the grains never "
+                         "turn, so there is no rolling to resist");
   if (s.periodic()) validate_gas(s);
   if (s.kind == SceneKind::kJet) validate_wall(s);
   if (s.kind == SceneKind::kJet && s.region.radius <= s.jet.outer_radius())

@@ -1,11 +1,14 @@
 // The registry of soft contact laws: where a value of contact.model becomes a law type. Any
 // backend that evaluates soft contacts includes it; each law is one header (the prototype,
-// with the interface a law provides, is linear_spring_dashpot.hpp) and one case below.
+// with the interface a law provides, is linear_spring_dashpot.hpp) and one case below. A law
+// is a normal part with, when friction needs one, the tangential part of
+// coulomb_tangential.hpp; the optional parts wrap it (Rolling<Law>, rolling_resistance.hpp).
 #pragma once
 
 #include "core/scene.hpp"
 #include "soft_dem/hertz_mindlin.hpp"
 #include "soft_dem/linear_spring_dashpot.hpp"
+#include "soft_dem/rolling_resistance.hpp"
 
 namespace granjet::dem {
 

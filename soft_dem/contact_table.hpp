@@ -12,6 +12,7 @@
 #include "core/dim.hpp"
 #include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/lane_vec.hpp"
+#include "soft_dem/rolling_resistance.hpp"
 
 namespace granjet::dem {
 
@@ -48,6 +49,13 @@ class Columns {
     for (int d = 0; d < W; ++d) v.c[d] = col_[d][c];
     return v;
   }
+  // A spin: a scalar in 2D (W = 1), a LaneVec<3> in 3D.
+  auto load_spin(std::size_t c) const {
+    if constexpr (W == 1)
+      return col_[0][c];
+    else
+      return load(c);
+  }
   void store(std::size_t c, const LaneVec<W>& v) {
     for (int d = 0; d < W; ++d) col_[d][c] = v.c[d];
   }
@@ -74,8 +82,10 @@ class Columns {
   std::array<std::vector<double>, W> col_;
 };
 
-// kRotation: whether the law's forces turn the grains (the torque columns exist only then).
-template <int D, bool kRotation>
+// kRotation: whether the law's forces turn the grains (the torque columns exist only then);
+// kRolling: whether it resists the grains' rolling (rolling_resistance.hpp), which needs the
+// contacts' relative spins.
+template <int D, bool kRotation, bool kRolling = false>
 class ContactTable {
  public:
   static constexpr int kSpinWidth = D == 3 ? 3 : 1;
@@ -91,6 +101,7 @@ class ContactTable {
       torque_i_.resize(n);
       torque_j_.resize(n);
     }
+    if constexpr (kRolling) w_rel_.resize(n);
   }
   template <class V>  // Vec<D> or LaneVec<D>
   void set(std::size_t c, const ContactGeometryOf<V>& g, const V& v_rel) {
@@ -100,13 +111,18 @@ class ContactTable {
     lever_j_[c] = g.lever_j;
     v_rel_.set(c, v_rel);
   }
+  // Rolling laws: the spin of i relative to j.
+  template <class S>
+  void set_relative_spin(std::size_t c, const S& w_rel) {
+    w_rel_.set(c, w_rel);
+  }
 
   // The contact law on contacts [begin, end); shear holds their u_t (laws with history).
   template <class Law>
   [[gnu::flatten]]  // the law inlined: only then is the loop vectorised
   void
   apply(const Law& law, Columns<D>& shear, std::size_t begin, std::size_t end) {
-    static_assert(Law::kNeedsRotation == kRotation);
+    static_assert(Law::kNeedsRotation == kRotation && rolls<Law> == kRolling);
     // Each contact touches only its own row of every column.
 #pragma GCC ivdep
     for (std::size_t c = begin; c < end; ++c) {
@@ -119,8 +135,15 @@ class ContactTable {
       if constexpr (kRotation) {
         // Only the tangential part has a lever arm: tau = (contact - centre) x F.
         const auto t = cross(g.n, f);
-        torque_i_.set(c, g.lever_i * t);
-        torque_j_.set(c, g.lever_j * t);
+        if constexpr (kRolling) {
+          // Stored as what is subtracted: i gains the rolling torque, j loses it.
+          const auto m = law.rolling_torque(g, w_rel_.load_spin(c), f);
+          torque_i_.set(c, g.lever_i * t - m);
+          torque_j_.set(c, g.lever_j * t + m);
+        } else {
+          torque_i_.set(c, g.lever_i * t);
+          torque_j_.set(c, g.lever_j * t);
+        }
       }
     }
   }
@@ -137,6 +160,7 @@ class ContactTable {
   Columns<D> v_rel_;
   Columns<D> force_;
   Columns<kSpinWidth> torque_i_, torque_j_;
+  Columns<kSpinWidth> w_rel_;
 };
 
 }  // namespace granjet::dem

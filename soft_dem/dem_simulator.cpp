@@ -635,6 +635,15 @@ PeriodicBox<D> periodic_box(const Scene& scene) {
   return box;
 }
 
+// Open space (jets, binary collisions), mono- or bidisperse.
+template <int D, class Law>
+std::unique_ptr<Simulator<D>> make_jet_with_law(const Scene& scene) {
+  Particles<D> initial = build_initial_state<D>(scene);
+  if (scene.monodisperse())
+    return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial));
+  return std::make_unique<DemSimulator<D, Law, false>>(scene, std::move(initial));
+}
+
 template <int D, class Law>
 std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
   // The gases' grains are unit grains (Scene::monodisperse), so they need no other instance.
@@ -643,10 +652,7 @@ std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
     return std::make_unique<DemSimulator<D, Law, true, PeriodicBox<D>>>(
         scene, build_initial_state<D>(scene), box);
   }
-  Particles<D> initial = build_initial_state<D>(scene);
-  if (scene.monodisperse())
-    return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial));
-  return std::make_unique<DemSimulator<D, Law, false>>(scene, std::move(initial));
+  return make_jet_with_law<D, Law>(scene);
 }
 
 }  // namespace
@@ -674,8 +680,11 @@ std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
         if constexpr (!LawOf<D, false>::kUnsupported.empty()) {
           throw InputError("contact.model", std::string(LawOf<D, false>::kUnsupported));
         } else {
-          // The law with its tangential part when the scene needs one: its traits then say
-          // what is stored and integrated.
+          // The law with its tangential part when the scene needs one, and its rolling part
+          // (rolling scenes are frictional and not periodic: scene_support refuses the rest);
+          // the law's traits then say what is stored and integrated.
+          if (scene.contact.rolling_friction > 0.0 && !scene.periodic())
+            return make_jet_with_law<D, Rolling<LawOf<D, true>>>(scene);
           if (scene.needs_history() || scene.needs_rotation())
             return make_with_law<D, LawOf<D, true>>(scene);
           return make_with_law<D, LawOf<D, false>>(scene);
@@ -693,6 +702,9 @@ template class DemSimulator<3, LinearSpringDashpot<3, false>, false>;
 template class DemSimulator<3, LinearSpringDashpot<3, false>, true>;
 template class DemSimulator<3, LinearSpringDashpot<3, true>, false>;
 template class DemSimulator<3, LinearSpringDashpot<3, true>, true>;
+// Rolling resistance on the linear law, monodisperse, for tests that set the grains' spins.
+template class DemSimulator<2, Rolling<LinearSpringDashpot<2, true>>, true>;
+template class DemSimulator<3, Rolling<LinearSpringDashpot<3, true>>, true>;
 template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
 template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
 

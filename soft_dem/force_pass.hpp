@@ -46,7 +46,7 @@ template <int D, class Law, bool kMono, class Space>
 class ForcePass {
  public:
   using History = ContactHistory<D, Law::kNeedsHistory>;
-  using Table = ContactTable<D, Law::kNeedsRotation>;
+  using Table = ContactTable<D, Law::kNeedsRotation, rolls<Law>>;
 
   // Where the contacts' forces go, per grain: raw pointers (see ContactSums). Bit 0 of forced
   // is set for a grain that gets a force.
@@ -306,6 +306,7 @@ class ForcePass {
       contacts_.set(c, g,
                     dem::relative_velocity<Law::kNeedsRotation>(Lane::at(v, i), Lane::at(v, j),
                                                                 spin_at(w, i), spin_at(w, j), g));
+      if constexpr (rolls<Law>) contacts_.set_relative_spin(c, spin_at(w, i) - spin_at(w, j));
       too_deep |= std::int64_t{g.overlap > overlap_limit_ * std::min(radius_i, radius_j)};
     }
     return too_deep != 0;

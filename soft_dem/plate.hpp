@@ -18,6 +18,7 @@
 #include "core/particles.hpp"
 #include "core/plate_face.hpp"
 #include "soft_dem/contact_geometry.hpp"
+#include "soft_dem/rolling_resistance.hpp"
 
 namespace granjet::dem {
 
@@ -67,6 +68,7 @@ class Plate : public PlateFace<D> {
           const Vec<D> f = law_.force(g, v_rel, shear);
           force_i += f;
           if constexpr (Law::kNeedsRotation) torque_i -= g.lever_i * Dim<D>::cross(g.n, f);
+          if constexpr (rolls<Law>) torque_i += law_.rolling_torque(g, w, f);  // the face is still
         },
         [&] {
           if constexpr (Law::kNeedsHistory) shear_[i].setZero();

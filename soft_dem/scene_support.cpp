@@ -12,6 +12,11 @@ SceneSupport scene_support(const Scene& scene) {
   support.resolved = scene;
   if (const std::string why = contact_law_refusal(scene); !why.empty())
     support.unsupported.push_back({"contact.model", why});
+  if (scene.contact.rolling_friction > 0.0 && scene.periodic())
+    support.unsupported.push_back(
+        {"contact.rolling_friction",
+         "rolling resistance is built for the jet and binary scenes, not the periodic gases; "
+         "set it to 0"});
   if (scene.output.omega && !scene.needs_rotation())
     support.unsupported.push_back(
         {"output.fields",

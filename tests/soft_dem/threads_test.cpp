@@ -64,6 +64,13 @@ TEST(Threads, Jet2dOnTheFrictionalPlateIsBitIdentical) {
       "jet2d.ini", {"jet.grains=1500", "contact.friction=0.5", "wall.kind=plate"}, 3.0);
 }
 
+TEST(Threads, Jet3dWithRollingResistanceOnThePlateIsBitIdentical) {
+  expect_thread_count_invariant<3>(
+      "jet3d.ini",
+      {"jet.grains=2000", "contact.rolling_friction=0.1", "wall.kind=plate", "wall.diameter=14"},
+      3.0);
+}
+
 TEST(Threads, PeriodicGasIsBitIdentical) {
   expect_thread_count_invariant<3>("hcs3d.ini", {"gas.grains=864", "gas.phi=0.3"}, 2.0,
                                    {1, 2, 3});  // uneven shares of the rows
