@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <span>
 #include <sstream>
 #include <stdexcept>
@@ -284,10 +285,23 @@ Frame<D> read_frame(const std::filesystem::path& file, std::size_t index) {
                              " frames, no frame " + std::to_string(index));
   }
   // Each grain id has its row; the rows of removed grains hold id -1 and are left out.
+  // A damaged header can claim any number of rows: the four series must agree, and what they
+  // claim must fit in memory.
   const hsize_t rows = in.extent(kPosition, 3)[1];
-  std::vector<GrainId> id(rows);
-  std::vector<Vec<D>> position(rows), velocity(rows);
-  std::vector<double> radius(rows);
+  if (in.extent(kId, 2)[1] != rows || in.extent(kVelocity, 3)[1] != rows ||
+      in.extent(kRadius, 2)[1] != rows)
+    in.fail("read", "frames whose id, position, velocity and radius rows disagree");
+  std::vector<GrainId> id;
+  std::vector<Vec<D>> position, velocity;
+  std::vector<double> radius;
+  try {
+    id.resize(rows);
+    position.resize(rows);
+    velocity.resize(rows);
+    radius.resize(rows);
+  } catch (const std::bad_alloc&) {
+    in.fail("hold", "the " + std::to_string(rows) + " grains a frame claims");
+  }
   in.read(kId, {index, 0}, {1, rows}, H5T_NATIVE_INT64, id.data());
   in.read(kPosition, {index, 0, 0}, {1, rows, D}, H5T_NATIVE_DOUBLE, position.data());
   in.read(kVelocity, {index, 0, 0}, {1, rows, D}, H5T_NATIVE_DOUBLE, velocity.data());

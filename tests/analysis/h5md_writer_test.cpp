@@ -1,6 +1,7 @@
 #include "analysis/h5md_writer.hpp"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
+#include "core/errors.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -159,6 +161,31 @@ TEST_F(H5mdWriterTest, FinishedRunReadsBackIn2D) {
   expect_frames_read_back<2>(file, 3);
   EXPECT_THROW(read_frame<3>(file, 0), std::runtime_error);
   EXPECT_TRUE(fs::exists(dir_ / "flat.xmf"));
+}
+
+// A damaged header that claims another number of rows for one series (here the radii,
+// shortened by one) is refused as bad input before anything is allocated from it.
+TEST_F(H5mdWriterTest, FramesWhoseSeriesDisagreeInRowsAreRefused) {
+  const fs::path file = dir_ / "damaged.h5";
+  {
+    H5mdWriter<2> writer(file, metadata(2), kRows);
+    write_frames(writer, 2);
+    writer.finish();
+  }
+  {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t radius = H5Dopen2(f, "/particles/all/radius/value", H5P_DEFAULT);
+    const hsize_t shorter[2] = {2, kRows - 1};
+    ASSERT_GE(H5Dset_extent(radius, shorter), 0);
+    H5Dclose(radius);
+    H5Fclose(f);
+  }
+  try {
+    read_frame<2>(file, 0);
+    FAIL() << "a frame with disagreeing series must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rows disagree"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(H5mdWriterTest, AbandonedRunStaysPartialAndReadable) {
