@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs granjet's build dependencies and the plot script's Python packages from Debian
+# Installs granjet's build dependencies, the Python module's and the plot scripts' from Debian
 # packages (as root, idempotent) and builds it in Release under build/. Safe to run again: it
 # installs only what is missing and rebuilds only what changed.
 set -euo pipefail
@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin hdf5-tools
   python3-h5py python3-matplotlib python3-numpy
+  pybind11-dev python3-dev python3-pytest
 )
 bash scripts/debian_packages.sh "${packages[@]}"
 

@@ -1,0 +1,316 @@
+// `import granjet`: scenes, simulators and kinetic theory from Python, on the library the
+// command uses (run/, analysis/), with NumPy arrays. Build: the CMake tree (pybind11 from
+// Debian's pybind11-dev); the module lands in build/python (docs/python.md).
+#include <Python.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "analysis/kinetic_theory.hpp"
+#include "core/dim.hpp"
+#include "core/errors.hpp"
+#include "core/scene.hpp"
+#include "run/backend_factory.hpp"
+#include "run/run_budget.hpp"
+#include "run/scene_file.hpp"
+
+namespace py = pybind11;
+
+namespace granjet::python {
+namespace {
+
+// A Python value as a scene file writes it: true/false, numbers at full precision (repr), lists
+// comma-separated (output.fields).
+std::string scene_text(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    std::string joined;
+    for (const py::handle& item : value) joined += (joined.empty() ? "" : ", ") + scene_text(item);
+    return joined;
+  }
+  return py::repr(value).cast<std::string>();
+}
+
+Scene parse(const std::string& ini, const std::string& source,
+            const std::vector<std::string>& overrides) {
+  std::istringstream in(ini);
+  return parse_scene(in, source, overrides);
+}
+
+// {"scene.kind": "jet", "jet.grains": 1000} or {"scene": {"kind": "jet"}, "jet": {...}}: the
+// same keys, checks and messages as a scene file.
+Scene scene_from_dict(const py::dict& entries) {
+  std::map<std::string, std::vector<std::string>> sections;
+  const auto add = [&](const std::string& key, const py::handle& value) {
+    const auto dot = key.find('.');
+    if (dot == std::string::npos)
+      throw InputError(key, "expected section.key (such as run.t_end), or a section's dict");
+    sections[key.substr(0, dot)].push_back(key.substr(dot + 1) + " = " + scene_text(value));
+  };
+  for (const auto& [key, value] : entries) {
+    const std::string name = key.cast<std::string>();
+    if (py::isinstance<py::dict>(value)) {
+      for (const auto& [inner, v] : value.cast<py::dict>())
+        add(name + "." + inner.cast<std::string>(), v);
+    } else {
+      add(name, value);
+    }
+  }
+  std::string ini;
+  for (const auto& [section, lines] : sections) {
+    ini += "[" + section + "]\n";
+    for (const std::string& line : lines) ini += line + "\n";
+  }
+  return parse(ini, "dict", {});
+}
+
+// Read-only NumPy view of `count` rows of `width` doubles (or ids) at `data`, owned by `owner`:
+// no copy; valid until the owner's next advance.
+template <class T>
+py::array view(const T* data, std::size_t count, std::size_t width, const py::object& owner) {
+  std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(count)};
+  std::vector<py::ssize_t> strides{static_cast<py::ssize_t>(width * sizeof(T))};
+  if (width > 1) {
+    shape.push_back(static_cast<py::ssize_t>(width));
+    strides.push_back(sizeof(T));
+  }
+  py::array a(py::dtype::of<T>(), shape, strides, data, owner);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+// The dimension of a simulator held in the variant below.
+template <class T>
+struct DimensionOf;
+template <int D>
+struct DimensionOf<std::unique_ptr<Simulator<D>>> {
+  static constexpr int value = D;
+};
+
+class PySimulator {
+ public:
+  PySimulator(const Scene& requested, const std::string& backend, int threads) {
+    Scene scene = requested;
+    if (threads > 0) scene.run.threads = threads;
+    check_run_budget(scene, backend, physical_memory_bytes());
+    scene_ = check_backend(backend, scene).resolved;
+    backend_ = backend;
+    if (scene_.dimension == 2)
+      sim_ = make_simulator<2>(backend, scene_);
+    else
+      sim_ = make_simulator<3>(backend, scene_);
+  }
+
+  // Advances in stretches of 50 steps, the GIL released, and lets Python handle its signals in
+  // between: Ctrl-C raises KeyboardInterrupt at a step's end and the simulator stays usable.
+  // Stopping between stretches changes nothing: the run loop stops where its observers ask.
+  void advance_to(double t) {
+    const double stretch = 50.0 * scene_.dt(), half_step = 0.5 * scene_.dt();
+    while (time() < t - half_step) {
+      // The last stretch ends at t itself: a sum of stretches would round beside it.
+      const double next = time() + stretch < t - half_step ? time() + stretch : t;
+      {
+        py::gil_scoped_release unlocked;
+        std::visit([&](auto& sim) { sim->advance_to(next); }, sim_);
+      }
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+  }
+
+  double time() const {
+    return std::visit([](const auto& sim) { return sim->time(); }, sim_);
+  }
+  int dimension() const { return scene_.dimension; }
+  const Scene& scene() const { return scene_; }
+  const std::string& backend() const { return backend_; }
+
+  py::dict energies() const {
+    const EnergyBalance e = std::visit([](const auto& sim) { return sim->energy(); }, sim_);
+    py::dict d;
+    d["kinetic"] = e.kinetic;
+    d["rotational"] = e.rotational;
+    d["elastic"] = e.elastic;
+    d["dissipated"] = e.dissipated;
+    d["removed"] = e.removed;
+    d["total"] = e.total();
+    return d;
+  }
+
+  py::dict stats() const {
+    const SimStats s = std::visit([](const auto& sim) { return sim->stats(); }, sim_);
+    py::dict d;
+    d["steps"] = s.steps;
+    d["particle_steps"] = s.particle_steps;
+    d["contacts"] = s.contacts;
+    d["neighbour_rebuilds"] = s.neighbour_rebuilds;
+    d["removed"] = s.removed;
+    d["events"] = s.events;
+    d["collisions"] = s.collisions;
+    d["cell_crossings"] = s.cell_crossings;
+    return d;
+  }
+
+  // The grains' arrays, views into the simulator (self keeps it alive).
+  static py::array grains(const py::object& self, const std::string& what) {
+    const PySimulator& me = self.cast<const PySimulator&>();
+    return std::visit(
+        [&](const auto& sim) -> py::array {
+          const auto& p = sim->particles();
+          constexpr int D = DimensionOf<std::remove_cvref_t<decltype(sim)>>::value;
+          if (what == "positions")
+            return view(p.position().data()->data(), p.size(), D, self);
+          if (what == "velocities")
+            return view(p.velocity().data()->data(), p.size(), D, self);
+          if (what == "radii") return view(p.radius().data(), p.size(), 1, self);
+          if (what == "ids") return view(p.id().data(), p.size(), 1, self);
+          const double* spin = reinterpret_cast<const double*>(p.spin().data());
+          return view(spin, p.size(), D == 3 ? 3 : 1, self);
+        },
+        me.sim_);
+  }
+
+  // Contact forces (soft DEM): a copy, since they are sampled, not stored.
+  py::dict forces() const {
+    return std::visit(
+        [](const auto& sim) {
+          constexpr int D = DimensionOf<std::remove_cvref_t<decltype(sim)>>::value;
+          ForceSample<D> sample;
+          sim->sample_forces(sample);
+          const auto c = static_cast<py::ssize_t>(sample.contacts.size());
+          py::array_t<std::int64_t> pairs({c, py::ssize_t{2}});
+          py::array_t<double> normal({c, py::ssize_t{D}}), tangential({c, py::ssize_t{D}});
+          py::array_t<double> overlap(c);
+          auto pr = pairs.mutable_unchecked<2>();
+          auto nr = normal.mutable_unchecked<2>(), tr = tangential.mutable_unchecked<2>();
+          auto orr = overlap.mutable_unchecked<1>();
+          for (py::ssize_t k = 0; k < c; ++k) {
+            const auto& contact = sample.contacts[k];
+            pr(k, 0) = contact.i;
+            pr(k, 1) = contact.j;
+            for (int d = 0; d < D; ++d) {
+              nr(k, d) = contact.normal_force[d];
+              tr(k, d) = contact.tangential_force[d];
+            }
+            orr(k) = contact.overlap;
+          }
+          py::array_t<double> total({static_cast<py::ssize_t>(sample.total.size()), py::ssize_t{D}});
+          auto t = total.mutable_unchecked<2>();
+          for (std::size_t i = 0; i < sample.total.size(); ++i)
+            for (int d = 0; d < D; ++d) t(static_cast<py::ssize_t>(i), d) = sample.total[i][d];
+          py::dict out;
+          out["pairs"] = pairs;
+          out["normal"] = normal;
+          out["tangential"] = tangential;
+          out["overlap"] = overlap;
+          out["total"] = total;
+          return out;
+        },
+        sim_);
+  }
+
+ private:
+  Scene scene_;
+  std::string backend_;
+  std::variant<std::unique_ptr<Simulator<2>>, std::unique_ptr<Simulator<3>>> sim_;
+};
+
+}  // namespace
+}  // namespace granjet::python
+
+PYBIND11_MODULE(granjet, m) {
+  using namespace granjet;
+  using granjet::python::PySimulator;
+  m.doc() = "granjet: granular jets on a soft-sphere DEM and an event-driven hard-sphere backend";
+
+  static py::exception<InputError> scene_error(m, "SceneError");
+  static py::exception<BlowUpError> blow_up_error(m, "BlowUpError");
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      scene_error(e.what());
+    } catch (const BlowUpError& e) {
+      blow_up_error(e.what());
+    }
+  });
+
+  py::class_<Scene>(m, "Scene", "A scene: every key of a scene file, checked as the CLI checks it.")
+      .def_static(
+          "from_file",
+          [](const std::string& path, const std::vector<std::string>& overrides) {
+            return load_scene(path, overrides);
+          },
+          py::arg("path"), py::arg("overrides") = std::vector<std::string>{},
+          "A scene file, with overrides 'section.key=value' as --set gives them.")
+      .def_static("from_dict", &python::scene_from_dict, py::arg("entries"),
+                  "From {'section.key': value} or {'section': {'key': value}}; scene.kind is "
+                  "required, every other key has its default.")
+      .def(
+          "set",
+          [](Scene& s, const std::string& key, const py::object& value) {
+            s = python::parse(scene_to_ini(s), "scene", {key + "=" + python::scene_text(value)});
+          },
+          py::arg("key"), py::arg("value"), "Sets one key, checked with the whole scene.")
+      .def("to_ini", &scene_to_ini, "The scene as a file that reproduces it.")
+      .def_property_readonly("dimension", [](const Scene& s) { return s.dimension; })
+      .def("__repr__", [](const Scene& s) {
+        return "<granjet.Scene " + (s.name.empty() ? std::string("(unnamed)") : s.name) + ", " +
+               std::to_string(s.dimension) + "D>";
+      });
+
+  py::class_<PySimulator>(m, "Simulator",
+                          "A scene on a backend: advance it, read its grains as NumPy arrays.")
+      .def(py::init<const Scene&, const std::string&, int>(), py::arg("scene"),
+           py::arg("backend") = "soft_dem", py::arg("threads") = 0,
+           "threads: run.threads (0: the scene's); the results do not depend on it.")
+      .def("advance_to", &PySimulator::advance_to, py::arg("t"),
+           "Advances to time t (to within half a step); Ctrl-C stops it at a step's end.")
+      .def_property_readonly("time", &PySimulator::time)
+      .def_property_readonly("dimension", &PySimulator::dimension)
+      .def_property_readonly("backend", &PySimulator::backend)
+      .def_property_readonly("scene", &PySimulator::scene, "The scene as the backend resolved it.")
+      .def("energies", &PySimulator::energies)
+      .def("stats", &PySimulator::stats)
+      .def_property_readonly(
+          "positions", [](const py::object& s) { return PySimulator::grains(s, "positions"); })
+      .def_property_readonly(
+          "velocities", [](const py::object& s) { return PySimulator::grains(s, "velocities"); })
+      .def_property_readonly("radii",
+                             [](const py::object& s) { return PySimulator::grains(s, "radii"); })
+      .def_property_readonly("ids", [](const py::object& s) { return PySimulator::grains(s, "ids"); })
+      .def_property_readonly("spins",
+                             [](const py::object& s) { return PySimulator::grains(s, "spins"); })
+      .def("forces", &PySimulator::forces,
+           "Contact pairs (ids; -1 the plate) with their normal and tangential forces and "
+           "overlaps, and each grain's total force (soft DEM).");
+
+  py::module_ theory = m.def_submodule("theory", "Kinetic theory of inelastic hard spheres.");
+  using namespace granjet::analysis::kinetic;
+  theory.def("chi", &chi, py::arg("phi"), "[5.3] pair correlation at contact.");
+  theory.def("pressure_ratio", &pressure_ratio, py::arg("phi"), py::arg("e"),
+             "[5.2] P/(n T_g) = 1 + 2 phi (1+e) chi.");
+  theory.def("effective_restitution", &effective_restitution, py::arg("e"), py::arg("mu_p"),
+             "[2.55] e - (pi/2) mu_p + (9/2) mu_p^2.");
+  theory.def("sonine_a2", py::overload_cast<double, int>(&sonine_a2), py::arg("e"),
+             py::arg("dimension") = 3, "[2.37] the HCS Sonine coefficient.");
+  theory.def("cooling_per_collision", &cooling_per_collision, py::arg("e"), py::arg("dimension"));
+  theory.def("carnahan_starling", &carnahan_starling, py::arg("phi"));
+  theory.def("henderson", &henderson, py::arg("phi"));
+  theory.def("enskog_collision_frequency", &enskog_collision_frequency, py::arg("phi"),
+             py::arg("temperature"), py::arg("dimension"));
+  theory.def("viscosity_star", &viscosity_star, py::arg("phi"), py::arg("e"),
+             "[5.4]-[5.11] Garzo-Dufty eta*.");
+  theory.def("kinetic_viscosity", &kinetic_viscosity, py::arg("phi"), py::arg("e"),
+             py::arg("temperature"), py::arg("mass") = 1.0, py::arg("diameter") = 1.0,
+             "[5.4] eta_kin.");
+}

@@ -1,0 +1,153 @@
+"""The Python module: scenes with the CLI's keys and errors, simulators on both backends whose
+trajectories are the CLI's bit for bit, NumPy views without copies, Ctrl-C, kinetic theory.
+
+Run by ctest (label python) with pytest from Debian and PYTHONPATH at the built module;
+GRANJET_BINARY and GRANJET_SCENES_DIR name the command and the shipped scenes."""
+import math
+import os
+import signal
+import subprocess
+import threading
+
+import h5py
+import numpy as np
+import pytest
+
+import granjet
+
+SCENES = os.environ["GRANJET_SCENES_DIR"]
+BINARY = os.environ["GRANJET_BINARY"]
+SMALL_JET2D = ["jet.grains=600", "run.t_end=6", "analysis.window_start=3",
+               "analysis.window_end=6"]
+
+
+def scene_file(name):
+    return os.path.join(SCENES, name)
+
+
+def test_scene_from_file_round_trips_through_its_ini(tmp_path):
+    scene = granjet.Scene.from_file(scene_file("jet2d.ini"), ["contact.friction=0.4"])
+    assert scene.dimension == 2
+    text = scene.to_ini()
+    assert "friction = 0.4" in text
+    path = tmp_path / "roundtrip.ini"
+    path.write_text(text)
+    assert granjet.Scene.from_file(str(path)).to_ini() == text
+
+
+def test_scene_from_dict_flat_or_nested_and_set():
+    flat = granjet.Scene.from_dict({"scene.kind": "binary", "scene.dimension": 2,
+                                    "contact.clamp_normal": True})
+    nested = granjet.Scene.from_dict({"scene": {"kind": "binary", "dimension": 2},
+                                      "contact": {"clamp_normal": True}})
+    assert flat.to_ini() == nested.to_ini()
+    flat.set("run.t_end", 0.75)
+    assert "t_end = 0.75" in flat.to_ini()
+    flat.set("output.fields", ["position", "velocity", "radius", "id", "force"])
+    assert "force" in flat.to_ini()
+
+
+def test_bad_key_raises_scene_error_with_the_clis_message():
+    with pytest.raises(granjet.SceneError) as raised:
+        granjet.Scene.from_file(scene_file("jet2d.ini"), ["run.tend=5"])
+    cli = subprocess.run([BINARY, "run", scene_file("jet2d.ini"), "--set", "run.tend=5"],
+                         capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert cli.stderr.strip() == "granjet: " + str(raised.value)
+    scene = granjet.Scene.from_file(scene_file("jet2d.ini"))
+    with pytest.raises(granjet.SceneError, match="contact.restitution"):
+        scene.set("contact.restitution", 1.5)
+    assert "restitution = 0.75" in scene.to_ini()  # a refused value changes nothing
+
+
+def final_frame_by_id(h5_path):
+    with h5py.File(h5_path, "r") as f:
+        ids = f["particles/all/id/value"][-1]
+        pos = f["particles/all/position/value"][-1]
+        vel = f["particles/all/velocity/value"][-1]
+    keep = ids >= 0
+    order = np.argsort(ids[keep])
+    return ids[keep][order], pos[keep][order], vel[keep][order]
+
+
+@pytest.mark.parametrize("backend", ["soft_dem", "event_driven"])
+def test_simulator_trajectory_is_the_clis_bit_for_bit(backend, tmp_path):
+    overrides = SMALL_JET2D + ["output.interval=6"]
+    out = tmp_path / "cli.h5"
+    subprocess.run([BINARY, "run", scene_file("jet2d.ini"), "--backend", backend, "--quiet",
+                    "--no-log", "--out", str(out)] + sum((["--set", o] for o in overrides), []),
+                   check=True, capture_output=True)
+    sim = granjet.Simulator(granjet.Scene.from_file(scene_file("jet2d.ini"), overrides), backend)
+    for t in np.arange(0.5, 6.01, 0.5):  # many stops: advancing in steps changes nothing
+        sim.advance_to(t)
+    assert sim.time == pytest.approx(6.0, abs=1e-3)
+    ids, pos, vel = final_frame_by_id(out)
+    order = np.argsort(sim.ids)
+    assert np.array_equal(sim.ids[order], ids)
+    assert np.array_equal(sim.positions[order], pos)
+    assert np.array_equal(sim.velocities[order], vel)
+
+
+def test_arrays_are_read_only_views_without_copies():
+    sim = granjet.Simulator(granjet.Scene.from_file(scene_file("jet3d.ini"),
+                                                    ["jet.grains=2000"]))
+    sim.advance_to(0.2)
+    positions = sim.positions
+    assert positions.shape == (len(sim.ids), 3)
+    assert not positions.flags.owndata and positions.base is not None
+    assert not positions.flags.writeable
+    assert sim.spins.shape == (len(sim.ids), 3)
+    assert sim.radii.shape == (len(sim.ids),)
+    with pytest.raises(ValueError):
+        positions[0, 0] = 1.0
+    e = sim.energies()
+    assert e["total"] == pytest.approx(e["kinetic"] + e["rotational"] + e["elastic"])
+    assert sim.stats()["steps"] > 0
+
+
+def test_contact_forces_of_the_soft_dem():
+    sim = granjet.Simulator(granjet.Scene.from_file(scene_file("jet2d.ini"), SMALL_JET2D))
+    sim.advance_to(4.0)
+    forces = sim.forces()
+    pairs = forces["pairs"]
+    assert pairs.shape[1] == 2 and len(pairs) > 0
+    assert forces["normal"].shape == (len(pairs), 2)
+    assert (forces["overlap"] > 0).all()
+    # Each jet grain's total force is its contacts' (Newton's third law for the partner); the
+    # target grains feel their tethers besides.
+    index = {grain: k for k, grain in enumerate(sim.ids)}
+    expected = np.zeros_like(forces["total"])
+    for (i, j), f in zip(pairs, forces["normal"] + forces["tangential"]):
+        expected[index[i]] += f
+        if j >= 0:
+            expected[index[j]] -= f
+    jet = sim.ids < 600
+    scale = np.abs(expected).max()
+    assert np.abs(forces["total"][jet] - expected[jet]).max() <= 1e-12 * scale
+
+
+def test_ctrl_c_raises_keyboard_interrupt_and_the_simulator_goes_on():
+    sim = granjet.Simulator(granjet.Scene.from_file(scene_file("jet3d.ini"),
+                                                    ["jet.grains=4000", "run.t_end=1000"]))
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        sim.advance_to(1000.0)
+    timer.join()
+    stopped = sim.time
+    assert 0.0 < stopped < 1000.0
+    sim.advance_to(stopped + 0.5)
+    assert sim.time == pytest.approx(stopped + 0.5, abs=0.01)
+
+
+def test_theory_returns_what_the_library_computes():
+    t = granjet.theory
+    phi, e = 0.3, 0.75
+    chi = (1 - phi / 2) / (1 - phi) ** 3  # [5.3] below phi_f
+    assert t.chi(phi) == pytest.approx(chi, rel=1e-12)
+    assert t.pressure_ratio(phi, e) == pytest.approx(1 + 2 * phi * (1 + e) * chi, rel=1e-12)
+    assert t.effective_restitution(0.75, 0.2) == pytest.approx(
+        0.75 - math.pi / 2 * 0.2 + 4.5 * 0.04, rel=1e-12)
+    a2 = 16 * (1 - e) * (1 - 2 * e ** 2) / (81 - 17 * e + 30 * e ** 2 * (1 - e))  # [2.37]
+    assert t.sonine_a2(e) == pytest.approx(a2, rel=1e-12)
+    assert t.viscosity_star(0.3, 0.75) == pytest.approx(3.430280, abs=2e-6)
