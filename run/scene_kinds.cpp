@@ -63,13 +63,15 @@ SceneKindTraits jet() {
   };
 }
 
-// Two grains head-on (or oblique): their restitution and contact time.
-template <int D>
-Measurements<D> binary_measurements(const Scene& s, Simulator<D>& sim) {
+// A kind watched by one observer.
+template <template <int> class Observer, int D>
+Measurements<D> measured_by(const Scene& s, Simulator<D>& sim) {
   Measurements<D> m;
-  m.push_back(std::make_unique<analysis::BinaryCollisionObserver<D>>(s, sim));
+  m.push_back(std::make_unique<Observer<D>>(s, sim));
   return m;
 }
+
+// Two grains head-on (or oblique): their restitution and contact time.
 
 SceneKindTraits binary() {
   return {
@@ -86,18 +88,12 @@ SceneKindTraits binary() {
       },
       none,
       [](const Scene&) { return std::vector<std::pair<std::string, double>>{}; },
-      binary_measurements<2>,
-      binary_measurements<3>,
+      measured_by<analysis::BinaryCollisionObserver, 2>,
+      measured_by<analysis::BinaryCollisionObserver, 3>,
   };
 }
 
 // A periodic gas, at equilibrium (gas) or cooling (hcs): its compressibility or Haff cooling.
-template <int D>
-Measurements<D> gas_measurements(const Scene& s, Simulator<D>& sim) {
-  Measurements<D> m;
-  m.push_back(std::make_unique<analysis::GasObserver<D>>(s, sim));
-  return m;
-}
 
 SceneKindTraits gas(SceneKind kind, std::string word) {
   return {
@@ -120,8 +116,8 @@ SceneKindTraits gas(SceneKind kind, std::string word) {
       [](const Scene& s) -> std::vector<std::pair<std::string, double>> {
         return {{"gas.equilibration", s.gas.equilibration}};
       },
-      gas_measurements<2>,
-      gas_measurements<3>,
+      measured_by<analysis::GasObserver, 2>,
+      measured_by<analysis::GasObserver, 3>,
   };
 }
 
