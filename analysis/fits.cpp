@@ -166,6 +166,8 @@ double friction_power(double i_s, double mu_s, double b, double beta) {
   return mu_s + b * std::pow(i_s, beta);  // [6.10]
 }
 
+double friction_linear(double i, double a) { return a * i; }
+
 double scattering_angle_law(double x, double c0, double c1, double c2) {
   const double c0p = c0 - c2;  // C0' (model §6)
   return std::sqrt(c0p * c0p * (1.0 - std::exp(-c1 * c1 * x * x / (c0p * c0p)))) + c2;
@@ -222,7 +224,9 @@ FitResult fit_mu_power(std::span<const double> i_s, std::span<const double> mu) 
 
 FitResult fit_mu_linear(std::span<const double> i, std::span<const double> mu) {
   const Points d = finite_points(i, mu, false);
-  const FitModel model = [](double x, const Eigen::VectorXd& p) { return p[0] * x; };
+  const FitModel model = [](double x, const Eigen::VectorXd& p) {
+    return friction_linear(x, p[0]);
+  };
   Eigen::VectorXd p0(1);
   const double xx = d.x.squaredNorm();
   p0 << (xx > 0.0 ? d.x.dot(d.y) / xx : 0.0);

@@ -39,6 +39,7 @@ FitResult fit_curve(const FitModel& model, std::span<const double> x, std::span<
 double packing_law(double i, double phi_0, double a, double alpha);              // [6.2]/[6.3]
 double friction_saturating(double i_s, double mu_s, double mu_max, double i_0);  // [6.9]
 double friction_power(double i_s, double mu_s, double b, double beta);           // [6.10]
+double friction_linear(double i, double a);                                      // 3D mu* = a I
 double scattering_angle_law(double x, double c0, double c1, double c2);          // §6 psi0(X)
 
 // The fits; initial guesses come from the data. Points with a non-positive inertial number are

@@ -9,12 +9,15 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <span>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <variant>
 #include <vector>
 
+#include "analysis/fits.hpp"
 #include "analysis/kinetic_theory.hpp"
 #include "core/dim.hpp"
 #include "core/errors.hpp"
@@ -22,6 +25,7 @@
 #include "run/backend_factory.hpp"
 #include "run/run_budget.hpp"
 #include "run/scene_file.hpp"
+#include "soft_dem/contact_coefficients.hpp"
 
 namespace py = pybind11;
 
@@ -167,10 +171,8 @@ class PySimulator {
         [&](const auto& sim) -> py::array {
           const auto& p = sim->particles();
           constexpr int D = DimensionOf<std::remove_cvref_t<decltype(sim)>>::value;
-          if (what == "positions")
-            return view(p.position().data()->data(), p.size(), D, self);
-          if (what == "velocities")
-            return view(p.velocity().data()->data(), p.size(), D, self);
+          if (what == "positions") return view(p.position().data()->data(), p.size(), D, self);
+          if (what == "velocities") return view(p.velocity().data()->data(), p.size(), D, self);
           if (what == "radii") return view(p.radius().data(), p.size(), 1, self);
           if (what == "ids") return view(p.id().data(), p.size(), 1, self);
           const double* spin = reinterpret_cast<const double*>(p.spin().data());
@@ -203,7 +205,8 @@ class PySimulator {
             }
             orr(k) = contact.overlap;
           }
-          py::array_t<double> total({static_cast<py::ssize_t>(sample.total.size()), py::ssize_t{D}});
+          py::array_t<double> total(
+              {static_cast<py::ssize_t>(sample.total.size()), py::ssize_t{D}});
           auto t = total.mutable_unchecked<2>();
           for (std::size_t i = 0; i < sample.total.size(); ++i)
             for (int d = 0; d < D; ++d) t(static_cast<py::ssize_t>(i), d) = sample.total[i][d];
@@ -287,30 +290,99 @@ PYBIND11_MODULE(granjet, m) {
           "velocities", [](const py::object& s) { return PySimulator::grains(s, "velocities"); })
       .def_property_readonly("radii",
                              [](const py::object& s) { return PySimulator::grains(s, "radii"); })
-      .def_property_readonly("ids", [](const py::object& s) { return PySimulator::grains(s, "ids"); })
+      .def_property_readonly("ids",
+                             [](const py::object& s) { return PySimulator::grains(s, "ids"); })
       .def_property_readonly("spins",
                              [](const py::object& s) { return PySimulator::grains(s, "spins"); })
       .def("forces", &PySimulator::forces,
            "Contact pairs (ids; -1 the plate) with their normal and tangential forces and "
            "overlaps, and each grain's total force (soft DEM).");
 
+  // Scalars or NumPy arrays (element by element), as the analysis computes them.
   py::module_ theory = m.def_submodule("theory", "Kinetic theory of inelastic hard spheres.");
-  using namespace granjet::analysis::kinetic;
-  theory.def("chi", &chi, py::arg("phi"), "[5.3] pair correlation at contact.");
-  theory.def("pressure_ratio", &pressure_ratio, py::arg("phi"), py::arg("e"),
+  namespace kt = granjet::analysis::kinetic;
+  theory.attr("PHI_FREEZING") = kt::kPhiFreezing;
+  theory.attr("PHI_CLOSE_PACKING") = kt::kPhiClosePacking;
+  theory.def("chi", py::vectorize(&kt::chi), py::arg("phi"),
+             "[5.3] pair correlation at contact (infinite from phi_c on).");
+  theory.def("pressure_ratio", py::vectorize(&kt::pressure_ratio), py::arg("phi"), py::arg("e"),
              "[5.2] P/(n T_g) = 1 + 2 phi (1+e) chi.");
-  theory.def("effective_restitution", &effective_restitution, py::arg("e"), py::arg("mu_p"),
-             "[2.55] e - (pi/2) mu_p + (9/2) mu_p^2.");
-  theory.def("sonine_a2", py::overload_cast<double, int>(&sonine_a2), py::arg("e"),
-             py::arg("dimension") = 3, "[2.37] the HCS Sonine coefficient.");
-  theory.def("cooling_per_collision", &cooling_per_collision, py::arg("e"), py::arg("dimension"));
-  theory.def("carnahan_starling", &carnahan_starling, py::arg("phi"));
-  theory.def("henderson", &henderson, py::arg("phi"));
-  theory.def("enskog_collision_frequency", &enskog_collision_frequency, py::arg("phi"),
-             py::arg("temperature"), py::arg("dimension"));
-  theory.def("viscosity_star", &viscosity_star, py::arg("phi"), py::arg("e"),
+  theory.def("effective_restitution", py::vectorize(&kt::effective_restitution), py::arg("e"),
+             py::arg("mu_p"), "[2.55] e - (pi/2) mu_p + (9/2) mu_p^2.");
+  theory.def("sonine_a2", py::vectorize(py::overload_cast<double, int>(&kt::sonine_a2)),
+             py::arg("e"), py::arg("dimension") = 3, "[2.37] the HCS Sonine coefficient.");
+  theory.def("cooling_per_collision", py::vectorize(&kt::cooling_per_collision), py::arg("e"),
+             py::arg("dimension"));
+  theory.def("carnahan_starling", py::vectorize(&kt::carnahan_starling), py::arg("phi"));
+  theory.def("henderson", py::vectorize(&kt::henderson), py::arg("phi"));
+  theory.def("enskog_collision_frequency", py::vectorize(&kt::enskog_collision_frequency),
+             py::arg("phi"), py::arg("temperature"), py::arg("dimension"));
+  theory.def("viscosity_star", py::vectorize(&kt::viscosity_star), py::arg("phi"), py::arg("e"),
              "[5.4]-[5.11] Garzo-Dufty eta*.");
-  theory.def("kinetic_viscosity", &kinetic_viscosity, py::arg("phi"), py::arg("e"),
-             py::arg("temperature"), py::arg("mass") = 1.0, py::arg("diameter") = 1.0,
+  theory.def("kinetic_viscosity", py::vectorize(&kt::kinetic_viscosity), py::arg("phi"),
+             py::arg("e"), py::arg("temperature"), py::arg("mass") = 1.0, py::arg("diameter") = 1.0,
              "[5.4] eta_kin.");
+
+  py::module_ contact = m.def_submodule("contact", "The soft contact laws' coefficients.");
+  contact.def(
+      "coefficients",
+      [](double e, double t_c, double spring_ratio, double damping_ratio) {
+        ContactSpec spec;
+        spec.restitution = e;
+        spec.contact_time = t_c;
+        spec.spring_ratio = spring_ratio;
+        spec.damping_ratio = damping_ratio;
+        const dem::ContactCoefficients c = dem::contact_coefficients(spec);
+        py::dict out;
+        out["k_n"] = c.kn;
+        out["eta_n"] = c.eta_n;
+        out["k_t"] = c.kt;
+        out["eta_t"] = c.eta_t;
+        return out;
+      },
+      py::arg("e"), py::arg("t_c"), py::arg("spring_ratio") = 0.2, py::arg("damping_ratio") = 0.5,
+      "[3.4], [3.5]: the linear law's k_n, eta_n (and k_t, eta_t) of two unit grains whose "
+      "head-on collision has restitution e and lasts t_c.");
+
+  py::module_ fits = m.def_submodule("fits", "The study's laws and their least-squares fits.");
+  namespace an = granjet::analysis;
+  fits.def("packing_law", py::vectorize(&an::packing_law), py::arg("i"), py::arg("phi_0"),
+           py::arg("a"), py::arg("alpha"), "[6.2]/[6.3] phi = phi_0 - a I^(2/alpha).");
+  fits.def("friction_saturating", py::vectorize(&an::friction_saturating), py::arg("i_s"),
+           py::arg("mu_s"), py::arg("mu_max"), py::arg("i_0"),
+           "[6.9] mu* = mu_s + (mu_max - mu_s)/(1 + I_0/I_s).");
+  fits.def("friction_power", py::vectorize(&an::friction_power), py::arg("i_s"), py::arg("mu_s"),
+           py::arg("b"), py::arg("beta"), "[6.10] mu* = mu_s + b I_s^beta.");
+  fits.def("friction_linear", py::vectorize(&an::friction_linear), py::arg("i"), py::arg("a"),
+           "3D mu* = a I.");
+  fits.def("scattering_angle_law", py::vectorize(&an::scattering_angle_law), py::arg("x"),
+           py::arg("c0"), py::arg("c1"), py::arg("c2"), "psi0(X), model §6.");
+  // A fit as {"law", "parameters": {name: (value, error)}, "ssr", "points", "converged"}.
+  const auto fitted = [](const an::FitResult& f) {
+    py::dict parameters;
+    for (std::size_t k = 0; k < f.parameters.size(); ++k)
+      parameters[py::str(f.parameters[k])] = py::make_tuple(f.value[k], f.error[k]);
+    py::dict out;
+    out["law"] = f.law;
+    out["parameters"] = parameters;
+    out["ssr"] = f.ssr;
+    out["points"] = f.points;
+    out["converged"] = f.converged;
+    return out;
+  };
+  using Fit = an::FitResult (*)(std::span<const double>, std::span<const double>);
+  for (const auto& [name, fit, doc] : std::vector<std::tuple<const char*, Fit, const char*>>{
+           {"phi_of_i_t", &an::fit_phi_of_i_t, "[6.2]: phi_T, a_T, alpha_T"},
+           {"phi_of_i_s", &an::fit_phi_of_i_s, "[6.3]: phi_s, a_s, alpha_s"},
+           {"mu_saturating", &an::fit_mu_saturating, "[6.9]: mu_s, mu_max, I_0"},
+           {"mu_power", &an::fit_mu_power, "[6.10] with mu_s = 0: b, beta"},
+           {"mu_linear", &an::fit_mu_linear, "3D mu* = a I: a"},
+           {"scattering_angle", &an::fit_scattering_angle, "psi0(X): C0, C1, C2"}})
+    fits.def(
+        name,
+        [fit, fitted](const std::vector<double>& x, const std::vector<double>& y) {
+          if (x.size() != y.size()) throw py::value_error("x and y differ in length");
+          return fitted(fit(x, y));
+        },
+        py::arg("x"), py::arg("y"), doc);
 }

@@ -24,47 +24,29 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-# ---- The study's formulas (model §6); same as analysis/kinetic_theory.cpp and fits.cpp ------
-PHI_F, PHI_C = 0.49, 0.64  # [5.3] freezing and close packing
+# granjet's Python module (bash scripts/setup.sh builds it into build/python): the formulas
+# below are the analysis' own (analysis/kinetic_theory.cpp, analysis/fits.cpp), not copies.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "build", "python"))
+try:
+    import granjet  # noqa: E402
+    from granjet import fits, theory  # noqa: E402
+except ImportError as missing:
+    sys.exit(f"{os.path.basename(__file__)}: the granjet Python module is not built ({missing}); "
+             "bash scripts/setup.sh builds it into build/python")
 
-
-def chi_5_3(phi):
-    """[5.3] pair correlation at contact: Carnahan-Starling below phi_f, diverging at phi_c."""
-    phi = np.asarray(phi, dtype=float)
-    dilute = (1 - phi / 2) / (1 - phi) ** 3
-    with np.errstate(divide="ignore"):
-        dense = (1 - PHI_F / 2) * (PHI_C - PHI_F) / ((1 - PHI_F) ** 3 * (PHI_C - phi))
-    return np.where(phi < PHI_F, dilute, np.where(phi < PHI_C, dense, np.inf))
-
-
-def pressure_ratio_5_2(phi, e):
-    """[5.2] P/(n T_g) = 1 + 2 phi (1+e) chi; also P_alpha/(n T_alpha) (model §6)."""
-    return 1 + 2 * np.asarray(phi) * (1 + e) * chi_5_3(phi)
-
-
-def effective_restitution_2_55(e, mu_p):
-    """[2.55] e-bar = e - (pi/2) mu_p + (9/2) mu_p^2 for frictional grains."""
-    return e - np.pi / 2 * mu_p + 4.5 * mu_p ** 2
-
-
-def packing_6_2_6_3(i, phi_0, a, alpha):
-    """[6.2] phi = phi_T - a_T I_T^(2/alpha_T); [6.3] the same in I_s."""
-    return phi_0 - a * np.asarray(i) ** (2 / alpha)
-
-
-def friction_6_9(i_s, mu_s, mu_max, i_0):
-    """[6.9] mu* = mu_s + (mu_max - mu_s)/(1 + I_0/I_s)."""
-    return mu_s + (mu_max - mu_s) / (1 + i_0 / np.asarray(i_s))
+PHI_F, PHI_C = theory.PHI_FREEZING, theory.PHI_CLOSE_PACKING  # [5.3]
+chi_5_3 = theory.chi  # [5.3]
+pressure_ratio_5_2 = theory.pressure_ratio  # [5.2], also P_alpha/(n T_alpha)
+effective_restitution_2_55 = theory.effective_restitution  # [2.55]
+packing_6_2_6_3 = fits.packing_law  # [6.2], [6.3]
+friction_6_9 = fits.friction_saturating  # [6.9]
+friction_linear_3d = fits.friction_linear  # 3D mu* = a I (F5.7)
 
 
 def friction_6_10(i_s, b, beta):
-    """[6.10] mu* = mu_s + b I_s^beta with mu_s = 0, as the study fits it (model §6)."""
-    return b * np.asarray(i_s) ** beta
-
-
-def friction_linear_3d(i, a):
-    """3D mu* = a I through the origin (F5.7)."""
-    return a * np.asarray(i)
+    """[6.10] with mu_s = 0, as the study fits it (model §6)."""
+    return fits.friction_power(i_s, 0.0, b, beta)
 
 
 def unit_gaussian(c):

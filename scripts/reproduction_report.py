@@ -64,29 +64,15 @@ ANALYSES = ("Sensitivity", "Causes", "Readings")
 COLOURS = ("C0", "C1", "C2", "C3", "C4", "C5")
 
 
-# ---- The study's formulas not in plot_analysis ---------------------------------------------
-def contact_parameters_3_4_3_5(e, t_c, mass=1.0):
-    """(k_n, eta_n) from [3.4] t_c = pi/sqrt(2 k_n/m - eta_n^2) and [3.5] e = exp(-t_c eta_n)."""
-    eta_n = -math.log(e) / t_c
-    return mass * ((math.pi / t_c) ** 2 + eta_n ** 2) / 2, eta_n
+# ---- The study's formulas, from granjet's module (through plot_analysis) --------------------
+def contact_parameters_3_4_3_5(e, t_c):
+    """(k_n, eta_n) from [3.4] and [3.5] for two unit grains (soft_dem/contact_coefficients)."""
+    c = pa.granjet.contact.coefficients(e, t_c)
+    return c["k_n"], c["eta_n"]
 
 
-def viscosity_star_5_6(phi, e):
-    """[5.4]-[5.11] Garzo-Dufty eta*(phi) of inelastic hard spheres ([5.6], figure F5.9)."""
-    phi = np.asarray(phi, dtype=float)
-    g = pa.chi_5_3(phi)
-    c = 32 * (1 - e) * (1 - 2 * e ** 2) / (81 - 17 * e + 30 * e ** 2 * (1 - e))
-    nu_eta = g * (1 - (1 - e) ** 2 / 4) * (1 - c / 64)
-    zeta = 5 / 12 * g * (1 - e ** 2) * (1 + 3 * c / 32)
-    eta_k = (1 - 2 * (1 + e) * (1 - 3 * e) * phi * g / 5) / (nu_eta - zeta / 2)
-    gamma = 128 / (5 * np.pi) * phi ** 2 * g * (1 + e) * (1 - c / 32)
-    return eta_k * (1 + 4 * phi * g * (1 + e) / 5) + 3 * gamma / 5
-
-
-def scattering_fit_law(x, c0, c1, c2):
-    """F4.2's interpolation psi0 = sqrt(C0'^2 (1 - exp(-C1^2 X^2/C0'^2))) + C2, C0' = C0 - C2."""
-    c0p = c0 - c2
-    return np.sqrt(c0p ** 2 * (1 - np.exp(-(c1 * np.asarray(x)) ** 2 / c0p ** 2))) + c2
+viscosity_star_5_6 = pa.theory.viscosity_star  # [5.4]-[5.11], [5.6]
+scattering_fit_law = pa.fits.scattering_angle_law  # F4.2's psi0(X) interpolation
 
 
 def restitution_for(point):

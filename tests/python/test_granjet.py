@@ -151,3 +151,24 @@ def test_theory_returns_what_the_library_computes():
     a2 = 16 * (1 - e) * (1 - 2 * e ** 2) / (81 - 17 * e + 30 * e ** 2 * (1 - e))  # [2.37]
     assert t.sonine_a2(e) == pytest.approx(a2, rel=1e-12)
     assert t.viscosity_star(0.3, 0.75) == pytest.approx(3.430280, abs=2e-6)
+
+
+def test_theory_and_laws_take_arrays_element_by_element():
+    phi = np.array([0.1, 0.3, 0.55, 0.64])
+    chi = granjet.theory.chi(phi)
+    assert chi.shape == phi.shape
+    assert chi[1] == granjet.theory.chi(0.3) and np.isinf(chi[3])
+    i = np.array([0.01, 0.1, 1.0])
+    assert np.allclose(granjet.fits.packing_law(i, 0.8, 0.5, 1.5), 0.8 - 0.5 * i ** (2 / 1.5),
+                       rtol=1e-14)
+
+
+def test_fits_recover_the_laws_they_fit():
+    i_s = np.linspace(0.01, 1.0, 40)
+    mu = granjet.fits.friction_saturating(i_s, 0.25, 0.6, 0.3)
+    fit = granjet.fits.mu_saturating(i_s, mu)
+    assert fit["law"] == "6.9" and fit["converged"] and fit["points"] == 40
+    for name, value in {"mu_s": 0.25, "mu_max": 0.6, "I_0": 0.3}.items():
+        assert fit["parameters"][name][0] == pytest.approx(value, rel=1e-6)
+    with pytest.raises(ValueError):
+        granjet.fits.mu_linear([1.0, 2.0], [1.0])
