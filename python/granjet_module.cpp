@@ -17,7 +17,9 @@
 #include <variant>
 #include <vector>
 
+#include "analysis/field_reader.hpp"
 #include "analysis/fits.hpp"
+#include "analysis/h5md_reader.hpp"
 #include "analysis/kinetic_theory.hpp"
 #include "core/dim.hpp"
 #include "core/errors.hpp"
@@ -227,6 +229,61 @@ class PySimulator {
   std::variant<std::unique_ptr<Simulator<2>>, std::unique_ptr<Simulator<3>>> sim_;
 };
 
+// A run's or an ensemble's file as granjet wrote it: its summary, stored scene, frames and any
+// dataset of doubles, as NumPy arrays (copies: the file is closed between reads).
+class PyFile {
+ public:
+  explicit PyFile(std::string path)
+      : path_(std::move(path)), summary_(analysis::read_summary(path_)) {}
+
+  py::dict summary() const {
+    py::dict d;
+    d["creator"] = summary_.creator + " " + summary_.creator_version;
+    d["backend"] = summary_.backend;
+    d["status"] = summary_.status;
+    d["dimension"] = summary_.dimension;
+    d["frames"] = summary_.frames;
+    d["max_grains"] = summary_.max_grains;
+    d["first_time"] = summary_.first_time;
+    d["last_time"] = summary_.last_time;
+    d["members"] = summary_.members;
+    d["checkpoint"] = summary_.checkpoint;
+    return d;
+  }
+  Scene scene() const { return parse(summary_.scene_ini, path_ + " (stored scene)", {}); }
+
+  // Frame k's present grains, sorted by id.
+  py::dict frame(std::size_t k) const {
+    py::dict d;
+    const auto fill = [&](const auto& f, int dimension) {
+      const auto n = static_cast<py::ssize_t>(f.id.size());
+      d["step"] = f.step;
+      d["time"] = f.time;
+      d["ids"] = py::array_t<std::int64_t>(n, f.id.data());
+      d["radii"] = py::array_t<double>(n, f.radius.data());
+      const std::vector<py::ssize_t> shape{n, dimension};
+      d["positions"] = py::array_t<double>(shape, f.position.data()->data());
+      d["velocities"] = py::array_t<double>(shape, f.velocity.data()->data());
+    };
+    if (summary_.dimension == 2)
+      fill(analysis::read_frame<2>(path_, k), 2);
+    else
+      fill(analysis::read_frame<3>(path_, k), 3);
+    return d;
+  }
+
+  // Any dataset of doubles, flattened: "/observables/kinetic_energy/value",
+  // "/fields/T_g/mean", "/analysis/...".
+  py::array_t<double> dataset(const std::string& name) const {
+    const std::vector<double> v = analysis::read_analysis_values(path_, name);
+    return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  }
+
+ private:
+  std::string path_;
+  analysis::FileSummary summary_;
+};
+
 }  // namespace
 }  // namespace granjet::python
 
@@ -299,6 +356,19 @@ PYBIND11_MODULE(granjet, m) {
            "overlaps, and each grain's total force (soft DEM).");
 
   // Scalars or NumPy arrays (element by element), as the analysis computes them.
+  using granjet::python::PyFile;
+  py::class_<PyFile>(m, "File", "A granjet H5MD file, read back.")
+      .def_property_readonly("summary", &PyFile::summary)
+      .def_property_readonly("scene", &PyFile::scene, "The scene as the backend ran it.")
+      .def("frame", &PyFile::frame, py::arg("k"),
+           "Frame k's grains sorted by id: step, time, ids, positions, velocities, radii.")
+      .def("dataset", &PyFile::dataset, py::arg("name"),
+           "A dataset of doubles, flattened (e.g. '/observables/kinetic_energy/value', "
+           "'/fields/T_g/mean').");
+  m.def(
+      "open", [](const std::string& path) { return PyFile(path); }, py::arg("path"),
+      "A run's or an ensemble's file as granjet wrote it.");
+
   py::module_ theory = m.def_submodule("theory", "Kinetic theory of inelastic hard spheres.");
   namespace kt = granjet::analysis::kinetic;
   theory.attr("PHI_FREEZING") = kt::kPhiFreezing;

@@ -172,3 +172,28 @@ def test_fits_recover_the_laws_they_fit():
         assert fit["parameters"][name][0] == pytest.approx(value, rel=1e-6)
     with pytest.raises(ValueError):
         granjet.fits.mu_linear([1.0, 2.0], [1.0])
+
+
+def test_open_reads_back_what_the_cli_wrote(tmp_path):
+    out = tmp_path / "run.h5"
+    subprocess.run([BINARY, "run", scene_file("jet2d.ini"), "--quiet", "--no-log", "--out",
+                    str(out)] + sum((["--set", o] for o in SMALL_JET2D + ["output.interval=2"]),
+                                    []), check=True, capture_output=True)
+    f = granjet.open(str(out))
+    assert f.summary["status"] == "complete" and f.summary["dimension"] == 2
+    assert f.summary["frames"] == 4  # t = 0, 2, 4, 6
+    info = subprocess.run([BINARY, "info", str(out), "--scene"], capture_output=True, text=True,
+                          check=True).stdout
+    assert f.scene.to_ini().strip() == info.strip()  # the resolved scene, as the run stored it
+    ids, pos, vel = final_frame_by_id(out)
+    last = f.frame(3)
+    assert last["time"] == pytest.approx(6.0)
+    assert np.array_equal(last["ids"], ids) and np.array_equal(last["positions"], pos)
+    with h5py.File(out, "r") as h5:
+        kinetic = h5["observables/kinetic_energy/value"][()]
+        t_g = h5["fields/T_g/mean"][()]
+    assert np.array_equal(f.dataset("/observables/kinetic_energy/value"), kinetic.ravel())
+    assert np.isfinite(t_g).any()
+    assert np.array_equal(f.dataset("/fields/T_g/mean"), t_g.ravel(), equal_nan=True)
+    with pytest.raises(Exception):
+        f.dataset("/fields/no_such_field/mean")
