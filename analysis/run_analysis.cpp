@@ -27,13 +27,6 @@ std::vector<FitResult> scene_fits(const EnsembleTable& bins, int dimension) {
           fit_mu_power(i_s, mu)};
 }
 
-// The position on the jet axis of the layers' h = 0 (model §6 "Height origin", an assumption of
-// the reproduction): the target grains' centre plane, or their top surface, which is where the
-// plate's face lies too (core/jet_geometry.hpp).
-double height_origin_position(HeightOrigin origin) {
-  return origin == HeightOrigin::kWallSurface ? kTargetSurface : 0.0;
-}
-
 // Grains count as scattered once they "have left the target region" (model §6), which the
 // study's text does not fix; an assumption of the reproduction: beyond 1.5 R_tar, and at least
 // 1 d beyond the jet's outer edge, so that a jet wider than its target (X = D_tar/D_jet < 1,

@@ -15,6 +15,12 @@ namespace granjet {
 inline constexpr double kTargetGrainDiameter = 1.0;
 inline constexpr double kTargetSurface = 0.5 * kTargetGrainDiameter;
 
+// The position on the jet axis of the measuring layers' h = 0 (model §6 "Height origin", an
+// assumption of the reproduction): the target grains' centre plane, or their top surface.
+inline double height_origin_position(HeightOrigin origin) {
+  return origin == HeightOrigin::kWallSurface ? kTargetSurface : 0.0;
+}
+
 // The axis the jet moves along (towards -infinity) onto the target at 0: 2D x (the target is
 // the line x = 0), 3D z (the plane z = 0).
 template <int D>

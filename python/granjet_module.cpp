@@ -25,6 +25,7 @@
 #include "core/errors.hpp"
 #include "core/scene.hpp"
 #include "run/backend_factory.hpp"
+#include "run/frame_replay.hpp"
 #include "run/run_budget.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/contact_coefficients.hpp"
@@ -272,6 +273,14 @@ class PyFile {
     return d;
   }
 
+  // FE.1's T_g(t) in layer (a) over the frames in the analysis window (2D jets): (times, T_g).
+  py::tuple layer_a_temperature() const {
+    const TimeSeries s = layer_a_temperature_series(path_);
+    const auto n = static_cast<py::ssize_t>(s.time.size());
+    return py::make_tuple(py::array_t<double>(n, s.time.data()),
+                          py::array_t<double>(n, s.value.data()));
+  }
+
   // Any dataset of doubles, flattened: "/observables/kinetic_energy/value",
   // "/fields/T_g/mean", "/analysis/...".
   py::array_t<double> dataset(const std::string& name) const {
@@ -362,6 +371,9 @@ PYBIND11_MODULE(granjet, m) {
       .def_property_readonly("scene", &PyFile::scene, "The scene as the backend ran it.")
       .def("frame", &PyFile::frame, py::arg("k"),
            "Frame k's grains sorted by id: step, time, ids, positions, velocities, radii.")
+      .def("layer_a_temperature", &PyFile::layer_a_temperature,
+           "FE.1's T_g(t) in layer (a), -dy < y < 0, over the frames in the analysis window of "
+           "a 2D jet: (times, values).")
       .def("dataset", &PyFile::dataset, py::arg("name"),
            "A dataset of doubles, flattened (e.g. '/observables/kinetic_energy/value', "
            "'/fields/T_g/mean').");

@@ -7,6 +7,7 @@
 #include "analysis/field_writer.hpp"
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
+#include "analysis/layer_temperature.hpp"
 #include "analysis/run_analysis.hpp"
 #include "core/dim.hpp"
 #include "core/errors.hpp"
@@ -100,6 +101,25 @@ Reanalysis reanalyse(const std::filesystem::path& file, const analysis::FileSumm
 }
 
 }  // namespace
+
+TimeSeries layer_a_temperature_series(const std::filesystem::path& file) {
+  const analysis::FileSummary stored = analysis::read_summary(file);
+  if (stored.dimension != 2)
+    throw InputError(file.string(), "layer (a) is the 2D jet's; this file holds 3D grains");
+  std::istringstream ini(stored.scene_ini);
+  const Scene scene = parse_scene(ini, file.string() + " (stored scene)", {});
+  constexpr double kSlack = 1e-9;  // frame times are sums of output.interval
+  TimeSeries series;
+  for (std::size_t k = 0; k < stored.frames; ++k) {
+    const analysis::Frame<2> frame = analysis::read_frame<2>(file, k);
+    if (frame.time < scene.analysis.window_start - kSlack ||
+        frame.time > scene.analysis.window_end + kSlack)
+      continue;
+    series.time.push_back(frame.time);
+    series.value.push_back(analysis::layer_a_temperature(particles_of(frame, scene), scene));
+  }
+  return series;
+}
 
 Reanalysis reanalyse_frames(const std::filesystem::path& file,
                             const std::optional<std::pair<double, double>>& window) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "analysis/run_analysis.hpp"
 
@@ -24,5 +25,14 @@ struct Reanalysis {
 // as they are; the file is replaced only once its analysis is complete.
 Reanalysis reanalyse_frames(const std::filesystem::path& file,
                             const std::optional<std::pair<double, double>>& window);
+
+// FE.1's T_g(t) in layer (a) (analysis/layer_temperature.hpp) over a 2D jet's stored frames
+// inside its scene's analysis window; NaN where fewer than two grains are there. Throws
+// InputError naming the file for a 3D one.
+struct TimeSeries {
+  std::vector<double> time;
+  std::vector<double> value;
+};
+TimeSeries layer_a_temperature_series(const std::filesystem::path& file);
 
 }  // namespace granjet

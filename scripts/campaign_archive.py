@@ -169,7 +169,7 @@ def copy_without_frames(source, target_parent, name, made):
 
 def layer_a_series_of(path):
     """(times, values, frames) of FE.1's series for a 2D jet run file: computed from its frames
-    (campaign_data.layer_a_series with the file's own resolved scene), or the stored one of a
+    (campaign_data.layer_a_series, by the file's own resolved scene), or the stored one of a
     file packed before; None for other files."""
     with h5py.File(path, "r") as f:
         frames = campaign_data.frame_count(f)
@@ -185,7 +185,7 @@ def layer_a_series_of(path):
     scene = campaign_data.ResolvedScene.of_run_file(path)
     if scene.param("scene.kind") != "jet" or scene.param("scene.dimension") != "2":
         return None
-    return (*campaign_data.layer_a_series(path, scene), frames)
+    return (*campaign_data.layer_a_series(path), frames)
 
 
 def untracked_group(parent, name):

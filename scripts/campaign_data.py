@@ -342,42 +342,18 @@ def frame_count(f):
     return 0 if grains is None or "position" not in grains else grains["position/time"].shape[0]
 
 
-def layer_a_series(path, point):
-    """T_g(t) = sum m |v - <v>|^2 / (2 N) of the jet grains with centres in layer (a) and
-    -dy < y < 0 (dy = R_tar/5), from the stored frames inside the analysis window; the same
-    measure as tests/stability/burst_test.cpp, heights from the scene's height origin. A file
-    without frames gives the series stored at LAYER_A_SERIES (campaign_archive.py), else none.
-    point: a Point or ResolvedScene (param, number)."""
+def layer_a_series(path):
+    """FE.1's T_g(t) in layer (a), -dy < y < 0, of a 2D jet run: from its stored frames inside
+    the analysis window by granjet's own measure (analysis/layer_temperature.cpp, through the
+    Python module), or, for a file without frames, the series stored at LAYER_A_SERIES
+    (campaign_archive.py); else none."""
     with h5py.File(path, "r") as f:
         if frame_count(f) == 0:
             stored = f.get(LAYER_A_SERIES)
             if stored is None:
                 return np.empty(0), np.empty(0)
             return stored["time"][()], stored["value"][()]
-        origin = 0.5 if point.param("analysis.height_origin") == "wall_surface" else 0.0
-        height = point.number("analysis.layer_height", 5.0)
-        dy = point.number("wall.diameter") / 10
-        start, end = point.number("analysis.window_start"), point.number("analysis.window_end")
-        grains = f["particles/all"]
-        times = grains["position/time"][()]
-        ids = grains["id/value"]
-        target = set(ids[0][np.all(grains["velocity/value"][0] == 0, axis=1)].tolist())
-        frames = np.nonzero((times >= start - 1e-9) & (times <= end + 1e-9))[0]
-        series = [frame_temperature(grains, k, target, origin, height, dy) for k in frames]
-    return times[frames], np.array(series)
-
-
-def frame_temperature(grains, frame, target, origin, height, dy):
-    ids = grains["id/value"][frame]
-    x = grains["position/value"][frame]
-    v = grains["velocity/value"][frame]
-    h = x[:, 0] - origin
-    inside = (ids >= 0) & (h > 0) & (h <= height) & (x[:, 1] > -dy) & (x[:, 1] < 0)
-    inside &= ~np.isin(ids, list(target))
-    if inside.sum() < 2:
-        return math.nan
-    u = v[inside] - v[inside].mean(axis=0)
-    return float((u ** 2).sum() / (2 * inside.sum()))  # m = 1 (model §2, equal masses)
+    return plot_analysis.granjet.open(path).layer_a_temperature()
 
 
 # ---- What ran where, when and with which commit ---------------------------------------------

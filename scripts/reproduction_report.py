@@ -1153,7 +1153,7 @@ def section_fe1(ctx):
         per_seed, drawn = [], False
         for seed in p.seeds_done():
             path = p.seed_path(seed, "h5")
-            times, series = cd.layer_a_series(path, p)
+            times, series = cd.layer_a_series(path)
             per_seed.append(burst_measures(series))
             if not drawn and series.size:
                 label = f"$t_c$ = {p.number('contact.contact_time'):g} (seed {seed})"

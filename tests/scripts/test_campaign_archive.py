@@ -218,9 +218,9 @@ def test_layer_a_series_from_the_archive_equals_the_frames(tmp):
         for point in campaign.points(group):
             for seed in point.seeds_done():
                 name = os.path.relpath(point.seed_path(seed, "h5"), Shared.path("campaign"))
-                times, values = campaign_data.layer_a_series(point.seed_path(seed, "h5"), point)
+                times, values = campaign_data.layer_a_series(point.seed_path(seed, "h5"))
                 stored = os.path.join(Shared.path("unpacked"), name)
-                again = campaign_data.layer_a_series(stored, point)
+                again = campaign_data.layer_a_series(stored)
                 assert times.size == 3 and np.isfinite(values).all(), (name, times, values)
                 assert np.array_equal(times, again[0]) and np.array_equal(values, again[1])
                 with h5py.File(stored, "r") as f:  # what it is, said in the file

@@ -32,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/layer_temperature.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "stability_common.hpp"
 
@@ -50,8 +51,6 @@ struct BurstMeasure {
   std::vector<double> series;
 };
 
-constexpr double kWallSurface = 0.5;  // target grains of diameter d centred on x = 0
-constexpr double kLayerHeight = 5.0;  // layer (a)
 constexpr double kSample = 0.25;
 constexpr int kBlock = 8;  // samples per block: 2 d/u0
 
@@ -74,31 +73,12 @@ double coefficient_of_variation(const std::vector<double>& x) {
   return standard_deviation(x) / average(x);
 }
 
-// T_g of the grains with centres in layer (a), -dy < y < 0; NaN when fewer than two.
-double layer_a_temperature(const Particles<2>& p, double dy, int& count) {
-  Vec<2> sum = Vec<2>::Zero();
-  std::vector<std::size_t> in;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind()[i] != GrainKind::kFree) continue;
-    const Vec<2>& x = p.position()[i];
-    const double h = x.x() - kWallSurface;
-    if (h > 0.0 && h <= kLayerHeight && x.y() > -dy && x.y() < 0.0) {
-      in.push_back(i);
-      sum += p.velocity()[i];
-    }
-  }
-  count = static_cast<int>(in.size());
-  if (in.size() < 2) return std::nan("");
-  const Vec<2> mean = sum / static_cast<double>(in.size());
-  double t = 0.0;
-  for (std::size_t i : in) t += p.mass()[i] * (p.velocity()[i] - mean).squaredNorm();
-  return t / (2.0 * static_cast<double>(in.size()));
-}
-
 BurstMeasure measure_bursts(double contact_time, int seed) {
   std::vector<std::string> overrides{"contact.friction=1.0",
                                      "contact.contact_time=" + std::to_string(contact_time),
-                                     "run.seed=" + std::to_string(seed), "analysis.enabled=false"};
+                                     "run.seed=" + std::to_string(seed), "analysis.enabled=false",
+                                     // heights from the target grains' top surface
+                                     "analysis.height_origin=wall_surface"};
   const bool full = study_size();
   if (!full)
     for (const char* o : {"jet.diameter=20", "wall.diameter=44", "jet.grains=2000",
@@ -106,7 +86,6 @@ BurstMeasure measure_bursts(double contact_time, int seed) {
       overrides.push_back(o);
   const Scene scene = shipped_scene("jet2d", overrides);
   const double window_end = scene.run.t_end;
-  const double dy = scene.wall.diameter / 10.0;  // R_tar / 5
   Stopwatch clock;
   auto sim = dem::make_dem_simulator<2>(scene);
   BurstMeasure m;
@@ -114,7 +93,7 @@ BurstMeasure measure_bursts(double contact_time, int seed) {
   for (double t = window_start(); t <= window_end + 1e-9; t += kSample) {
     sim->advance_to(t);
     int count = 0;
-    const double tg = layer_a_temperature(sim->particles(), dy, count);
+    const double tg = analysis::layer_a_temperature(sim->particles(), scene, &count);
     grains += count;
     m.series.push_back(std::isnan(tg) ? 0.0 : tg);
   }
