@@ -31,6 +31,7 @@
 #include "soft_dem/contact_coefficients.hpp"
 
 namespace py = pybind11;
+using namespace pybind11::literals;
 
 namespace granjet::python {
 namespace {
@@ -143,28 +144,16 @@ class PySimulator {
 
   py::dict energies() const {
     const EnergyBalance e = std::visit([](const auto& sim) { return sim->energy(); }, sim_);
-    py::dict d;
-    d["kinetic"] = e.kinetic;
-    d["rotational"] = e.rotational;
-    d["elastic"] = e.elastic;
-    d["dissipated"] = e.dissipated;
-    d["removed"] = e.removed;
-    d["total"] = e.total();
-    return d;
+    return py::dict("kinetic"_a = e.kinetic, "rotational"_a = e.rotational, "elastic"_a = e.elastic,
+                    "dissipated"_a = e.dissipated, "removed"_a = e.removed, "total"_a = e.total());
   }
 
   py::dict stats() const {
     const SimStats s = std::visit([](const auto& sim) { return sim->stats(); }, sim_);
-    py::dict d;
-    d["steps"] = s.steps;
-    d["particle_steps"] = s.particle_steps;
-    d["contacts"] = s.contacts;
-    d["neighbour_rebuilds"] = s.neighbour_rebuilds;
-    d["removed"] = s.removed;
-    d["events"] = s.events;
-    d["collisions"] = s.collisions;
-    d["cell_crossings"] = s.cell_crossings;
-    return d;
+    return py::dict("steps"_a = s.steps, "particle_steps"_a = s.particle_steps,
+                    "contacts"_a = s.contacts, "neighbour_rebuilds"_a = s.neighbour_rebuilds,
+                    "removed"_a = s.removed, "events"_a = s.events, "collisions"_a = s.collisions,
+                    "cell_crossings"_a = s.cell_crossings);
   }
 
   // The grains' arrays, views into the simulator (self keeps it alive).
@@ -213,13 +202,8 @@ class PySimulator {
           auto t = total.mutable_unchecked<2>();
           for (std::size_t i = 0; i < sample.total.size(); ++i)
             for (int d = 0; d < D; ++d) t(static_cast<py::ssize_t>(i), d) = sample.total[i][d];
-          py::dict out;
-          out["pairs"] = pairs;
-          out["normal"] = normal;
-          out["tangential"] = tangential;
-          out["overlap"] = overlap;
-          out["total"] = total;
-          return out;
+          return py::dict("pairs"_a = pairs, "normal"_a = normal, "tangential"_a = tangential,
+                          "overlap"_a = overlap, "total"_a = total);
         },
         sim_);
   }
@@ -238,18 +222,12 @@ class PyFile {
       : path_(std::move(path)), summary_(analysis::read_summary(path_)) {}
 
   py::dict summary() const {
-    py::dict d;
-    d["creator"] = summary_.creator + " " + summary_.creator_version;
-    d["backend"] = summary_.backend;
-    d["status"] = summary_.status;
-    d["dimension"] = summary_.dimension;
-    d["frames"] = summary_.frames;
-    d["max_grains"] = summary_.max_grains;
-    d["first_time"] = summary_.first_time;
-    d["last_time"] = summary_.last_time;
-    d["members"] = summary_.members;
-    d["checkpoint"] = summary_.checkpoint;
-    return d;
+    const analysis::FileSummary& f = summary_;
+    return py::dict("creator"_a = f.creator + " " + f.creator_version, "backend"_a = f.backend,
+                    "status"_a = f.status, "dimension"_a = f.dimension, "frames"_a = f.frames,
+                    "max_grains"_a = f.max_grains, "first_time"_a = f.first_time,
+                    "last_time"_a = f.last_time, "members"_a = f.members,
+                    "checkpoint"_a = f.checkpoint);
   }
   Scene scene() const { return parse(summary_.scene_ini, path_ + " (stored scene)", {}); }
 
@@ -415,12 +393,7 @@ PYBIND11_MODULE(granjet, m) {
         spec.spring_ratio = spring_ratio;
         spec.damping_ratio = damping_ratio;
         const dem::ContactCoefficients c = dem::contact_coefficients(spec);
-        py::dict out;
-        out["k_n"] = c.kn;
-        out["eta_n"] = c.eta_n;
-        out["k_t"] = c.kt;
-        out["eta_t"] = c.eta_t;
-        return out;
+        return py::dict("k_n"_a = c.kn, "eta_n"_a = c.eta_n, "k_t"_a = c.kt, "eta_t"_a = c.eta_t);
       },
       py::arg("e"), py::arg("t_c"), py::arg("spring_ratio") = 0.2, py::arg("damping_ratio") = 0.5,
       "[3.4], [3.5]: the linear law's k_n, eta_n (and k_t, eta_t) of two unit grains whose "
@@ -444,13 +417,8 @@ PYBIND11_MODULE(granjet, m) {
     py::dict parameters;
     for (std::size_t k = 0; k < f.parameters.size(); ++k)
       parameters[py::str(f.parameters[k])] = py::make_tuple(f.value[k], f.error[k]);
-    py::dict out;
-    out["law"] = f.law;
-    out["parameters"] = parameters;
-    out["ssr"] = f.ssr;
-    out["points"] = f.points;
-    out["converged"] = f.converged;
-    return out;
+    return py::dict("law"_a = f.law, "parameters"_a = parameters, "ssr"_a = f.ssr,
+                    "points"_a = f.points, "converged"_a = f.converged);
   };
   using Fit = an::FitResult (*)(std::span<const double>, std::span<const double>);
   for (const auto& [name, fit, doc] : std::vector<std::tuple<const char*, Fit, const char*>>{
