@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "analysis/hdf5_copy.hpp"
 #include "analysis/hdf5_handle.hpp"
 
 namespace granjet::analysis {
@@ -167,6 +168,11 @@ void write_analysis_hdf5(const std::filesystem::path& file, const EnsembleResult
     out.attribute(group, "converged", fit.converged ? 1.0 : 0.0);
   }
   out.close();
+}
+
+void copy_without_analysis(const std::filesystem::path& source,
+                           const std::filesystem::path& target) {
+  copy_hdf5_except(source, target, {"fields", "analysis"});
 }
 
 std::filesystem::path fields_sidecar(const std::filesystem::path& file) {

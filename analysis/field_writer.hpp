@@ -36,6 +36,14 @@ std::string field_path(std::string name);
 // The .fields.xmf sidecar that shows the fields of `file` in ParaView, beside it.
 std::filesystem::path fields_sidecar(const std::filesystem::path& file);
 
+// A new file `target` holding every top-level object of `source` except /fields and /analysis:
+// where a re-analysis writes them afresh. The old groups are never opened, so a damaged one
+// cannot stop the library (deleting a damaged group can crash it), and a file analysed again
+// does not keep the space of its earlier analysis. Throws InputError naming `source` when it
+// cannot be read, std::runtime_error naming `target` when that cannot be written.
+void copy_without_analysis(const std::filesystem::path& source,
+                           const std::filesystem::path& target);
+
 // The one way every command stores an analysis: `runs` combined (mean and spread over seeds,
 // fits; combine_runs), written as /fields and /analysis into `file` (write_analysis_hdf5), and
 // the fields' sidecar (write_fields_xdmf) beside the name the file will have, `published_as` (a

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "analysis/h5md_reader.hpp"
+#include "app/crash_guard.hpp"
 
 namespace granjet {
 namespace {
@@ -38,12 +39,16 @@ void print_summary(const analysis::FileSummary& summary, std::ostream& out) {
 }  // namespace
 
 int info_command(const InfoOptions& options, std::ostream& out) {
-  const analysis::FileSummary summary = analysis::read_summary(options.file);
-  if (options.scene_only)
-    out << summary.scene_ini;
-  else
-    print_summary(summary, out);
-  return 0;
+  return run_guarded(
+      [&] {
+        const analysis::FileSummary summary = analysis::read_summary(options.file);
+        if (options.scene_only)
+          out << summary.scene_ini;
+        else
+          print_summary(summary, out);
+        return 0;
+      },
+      options.file);
 }
 
 }  // namespace granjet

@@ -1,15 +1,14 @@
 // The granjet command: run | compare | campaign | info | analyze | --help | --version. Exit codes:
-// 0 done, 1 failure (I/O and other errors), 2 bad input, 3 numerical blow-up (output kept as
-// .partial).
+// app/failure_report.hpp.
 #include <algorithm>
 #include <boost/program_options.hpp>
 #include <iostream>
 #include <sstream>
 
-#include "analysis/file_lock.hpp"
 #include "app/analyze_command.hpp"
 #include "app/campaign_command.hpp"
 #include "app/compare_command.hpp"
+#include "app/failure_report.hpp"
 #include "app/info_command.hpp"
 #include "app/run_command.hpp"
 #include "app/version.hpp"
@@ -251,20 +250,10 @@ int main(int argc, char** argv) {
     if (command == "analyze") return analyze(args);
     std::cerr << "granjet: unknown command '" << command << "'\n" << kUsage;
     return 2;
-  } catch (const granjet::InputError& e) {
-    std::cerr << "granjet: " << e.what() << "\n";
-    return 2;
-  } catch (const granjet::analysis::FileBusyError& e) {
-    std::cerr << "granjet: " << e.what() << "; wait for it or name another --out\n";
-    return 2;
-  } catch (const granjet::BlowUpError& e) {  // while building the grains, before any output
-    std::cerr << "granjet: " << e.what() << "\n";
-    return 3;
   } catch (const po::error& e) {
     std::cerr << "granjet " << command << ": " << e.what() << "\n" << kUsage;
     return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "granjet: " << e.what() << "\n";
-    return 1;
+  } catch (...) {
+    return granjet::report_current_exception(std::cerr);
   }
 }

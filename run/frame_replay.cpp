@@ -61,16 +61,16 @@ analysis::RunResult analyse_frames(const std::filesystem::path& file,
   return run.finish();
 }
 
-// The analysis goes into a copy of the file, renamed over it when complete: a file that HDF5
-// can read but not extend (damaged), or a crash half-way, leaves the original as it was.
+// The analysis goes into a copy of the file (without its earlier analysis), renamed over it when
+// complete: a file that HDF5 can read but not extend (damaged), or a crash half-way, leaves the
+// original as it was.
 template <int D>
 analysis::EnsembleResult store_into_copy(const std::filesystem::path& file,
                                          const std::vector<analysis::RunResult>& runs) {
-  std::filesystem::path copy = file;
-  copy += ".partial";
+  const std::filesystem::path copy = reanalysis_copy(file);
   const analysis::FileLock lock(copy);
-  std::filesystem::copy_file(file, copy, std::filesystem::copy_options::overwrite_existing);
   try {
+    analysis::copy_without_analysis(file, copy);
     analysis::EnsembleResult result = analysis::write_ensemble(copy, runs, D, file);
     std::filesystem::rename(copy, file);
     return result;
@@ -101,6 +101,11 @@ Reanalysis reanalyse(const std::filesystem::path& file, const analysis::FileSumm
 }
 
 }  // namespace
+
+std::filesystem::path reanalysis_copy(const std::filesystem::path& file) {
+  std::filesystem::path copy = file;
+  return copy += ".reanalysis";
+}
 
 TimeSeries layer_a_temperature_series(const std::filesystem::path& file) {
   const analysis::FileSummary stored = analysis::read_summary(file);

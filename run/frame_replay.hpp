@@ -26,6 +26,10 @@ struct Reanalysis {
 Reanalysis reanalyse_frames(const std::filesystem::path& file,
                             const std::optional<std::pair<double, double>>& window);
 
+// The copy of `file` that reanalyse_frames writes and renames over it: FILE.reanalysis, never a
+// run's FILE.partial, which `granjet resume` may still need.
+std::filesystem::path reanalysis_copy(const std::filesystem::path& file);
+
 // FE.1's T_g(t) in layer (a) (analysis/layer_temperature.hpp) over a 2D jet's stored frames
 // inside its scene's analysis window; NaN where fewer than two grains are there. Throws
 // InputError naming the file for a 3D one.

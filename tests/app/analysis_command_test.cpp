@@ -56,6 +56,10 @@ TEST(AnalysisCommand, InlineFieldsAndStoredFrameAnalysisAgreeOnKineticFields) {
     }
     EXPECT_TRUE(frames["bins"][bin]["stress_contact"]["rz"]["mean"].is_null());  // none stored
   }
+  // A second analysis replaces the first without keeping its space.
+  const std::uintmax_t analysed_once = fs::file_size(h5);
+  ASSERT_EQ(run("analyze " + h5.string()), 0);
+  EXPECT_EQ(fs::file_size(h5), analysed_once);
   EXPECT_EQ(run("analyze " + h5.string() + " --window 9:10"), 2);  // no frame in the window
   fs::remove_all(dir);
 }
