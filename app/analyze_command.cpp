@@ -4,8 +4,8 @@
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/field_writer.hpp"
-#include "app/crash_guard.hpp"
 #include "core/errors.hpp"
+#include "run/crash_guard.hpp"
 #include "run/ensemble_output.hpp"
 #include "run/frame_replay.hpp"
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "analysis/h5md_reader.hpp"
-#include "app/crash_guard.hpp"
+#include "run/crash_guard.hpp"
 
 namespace granjet {
 namespace {

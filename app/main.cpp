@@ -1,5 +1,5 @@
 // The granjet command: run | compare | campaign | info | analyze | --help | --version. Exit codes:
-// app/failure_report.hpp.
+// run/failure_report.hpp.
 #include <algorithm>
 #include <boost/program_options.hpp>
 #include <iostream>
@@ -8,12 +8,12 @@
 #include "app/analyze_command.hpp"
 #include "app/campaign_command.hpp"
 #include "app/compare_command.hpp"
-#include "app/failure_report.hpp"
 #include "app/info_command.hpp"
 #include "app/run_command.hpp"
 #include "app/version.hpp"
 #include "core/errors.hpp"
 #include "run/backend_factory.hpp"
+#include "run/failure_report.hpp"
 #include "run/scene_file.hpp"
 #include "run/seed_list.hpp"
 

@@ -1,4 +1,4 @@
-#include "app/failure_report.hpp"
+#include "run/failure_report.hpp"
 
 #include <exception>
 #include <ostream>

@@ -1,4 +1,4 @@
-#include "app/crash_guard.hpp"
+#include "run/crash_guard.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,8 +11,8 @@
 #include <string>
 
 #include "analysis/file_lock.hpp"
-#include "app/failure_report.hpp"
 #include "core/errors.hpp"
+#include "run/failure_report.hpp"
 
 namespace granjet {
 namespace {

@@ -1,7 +1,7 @@
 // run_guarded: a command in a child process. Its exit code and its exceptions' exit codes come
 // back as they would without the child; a crash becomes an InputError naming the file, and the
 // child's scratch file goes unless another process holds it.
-#include "app/crash_guard.hpp"
+#include "run/crash_guard.hpp"
 
 #include <gtest/gtest.h>
 
