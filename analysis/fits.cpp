@@ -58,7 +58,8 @@ FitResult fit_points(const FitModel& model, const Points& data, const Eigen::Vec
   const auto p = static_cast<int>(p0.size());
   fit.value = p0;
   fit.error = Eigen::VectorXd::Constant(p, kNaN);
-  if (fit.points < p) {
+  if (fit.points < p) {  // nothing to fit: no value, not the initial guess
+    fit.value.setConstant(kNaN);
     fit.ssr = kNaN;
     return fit;
   }
@@ -231,6 +232,21 @@ FitResult fit_mu_linear(std::span<const double> i, std::span<const double> mu) {
   const double xx = d.x.squaredNorm();
   p0 << (xx > 0.0 ? d.x.dot(d.y) / xx : 0.0);
   return fit_points(model, d, p0, {"a"}, "mu_linear");
+}
+
+FitResult fit_mu_affine(std::span<const double> i, std::span<const double> mu) {
+  const Points d = finite_points(i, mu, false);
+  const FitModel model = [](double x, const Eigen::VectorXd& p) {
+    return p[0] + friction_linear(x, p[1]);
+  };
+  Eigen::VectorXd p0 = Eigen::VectorXd::Zero(2);
+  if (d.x.size() >= 2) {  // the linear least-squares line is the optimum already
+    Eigen::MatrixXd a(d.x.size(), 2);
+    a.col(0).setOnes();
+    a.col(1) = d.x;
+    p0 = a.colPivHouseholderQr().solve(d.y);
+  }
+  return fit_points(model, d, p0, {"mu_0", "a"}, "mu_affine");
 }
 
 FitResult fit_scattering_angle(std::span<const double> x, std::span<const double> psi0) {

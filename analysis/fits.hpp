@@ -13,13 +13,14 @@
 namespace granjet::analysis {
 
 struct FitResult {
-  // Which law: "6.2", "6.3", "6.9", "6.10" (model labels), "mu_linear", "psi0_X"; also the
+  // Which law: "6.2", "6.3", "6.9", "6.10" (model labels), "mu_linear", "mu_affine", "psi0_X";
+  // also the
   // fit's name in the JSON and HDF5 output.
   std::string law;
   std::vector<std::string> parameters;  // names, in the order of `value`
-  Eigen::VectorXd value;
-  Eigen::VectorXd error;  // standard errors; NaN when n <= p or J^T J is singular
-  double ssr = 0.0;       // sum of squared residuals at the optimum
+  Eigen::VectorXd value;                // NaN when there are fewer points than parameters
+  Eigen::VectorXd error;                // standard errors; NaN when n <= p or J^T J is singular
+  double ssr = 0.0;                     // sum of squared residuals at the optimum
   int points = 0;
   bool converged = false;
 
@@ -54,6 +55,9 @@ FitResult fit_mu_saturating(std::span<const double> i_s, std::span<const double>
 FitResult fit_mu_power(std::span<const double> i_s, std::span<const double> mu);
 // 3D mu* = a I through the origin: parameter a.
 FitResult fit_mu_linear(std::span<const double> i, std::span<const double> mu);
+// 3D mu* = mu_0 + a I, the line with a free intercept (a reading of F5.7 that allows a yield
+// value mu_0): parameters mu_0, a.
+FitResult fit_mu_affine(std::span<const double> i, std::span<const double> mu);
 // psi0(X) = sqrt(C0'^2 (1 - exp(-C1^2 X^2/C0'^2))) + C2, C0' = C0 - C2: parameters C0, C1, C2.
 // C1 enters squared; its magnitude is reported.
 FitResult fit_scattering_angle(std::span<const double> x, std::span<const double> psi0);

@@ -427,6 +427,7 @@ PYBIND11_MODULE(granjet, m) {
            {"mu_saturating", &an::fit_mu_saturating, "[6.9]: mu_s, mu_max, I_0"},
            {"mu_power", &an::fit_mu_power, "[6.10] with mu_s = 0: b, beta"},
            {"mu_linear", &an::fit_mu_linear, "3D mu* = a I: a"},
+           {"mu_affine", &an::fit_mu_affine, "3D mu* = mu_0 + a I: mu_0, a"},
            {"scattering_angle", &an::fit_scattering_angle, "psi0(X): C0, C1, C2"}})
     fits.def(
         name,

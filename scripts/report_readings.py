@@ -14,7 +14,7 @@ words leave open, each measured, beside the study's published numbers.
    backend and the exact free-streamline angle, one change at a time.
 
 Every number is formed from the ensembles (error bar: std over seeds) like the rest of the
-report; fits are the report's Levenberg-Marquardt fits to the pooled ensemble means.
+report; fits are granjet's own (granjet.fits) to the pooled ensemble means.
 """
 import math
 
@@ -115,16 +115,15 @@ def spread_over_e(by_e):
 def momentum_fits(by_e, rr, s):
     fits = Table("psi0_momentum_fit", ["e", "C0 [rad]", "C1 [rad]", "C2 [rad]",
                                        *(f"psi0(X={x:g}) [deg]" for x in STUDY_X)],
-                 "The interpolation law fitted to the momentum reading's ensemble means (numpy "
-                 "Levenberg-Marquardt, standard errors), and its values at the study's X. The "
+                 "The interpolation law fitted to the momentum reading's ensemble means "
+                 "(granjet.fits.scattering_angle, standard errors), and its values at the study's X. The "
                  "study: C = 1.68, 0.563, 0.554 rad; psi0 = " +
                  ", ".join(f"{study_psi0_deg(x):.1f}" for x in STUDY_X) + " deg.")
     for e, rows in sorted(by_e.items()):
         rows.sort(key=lambda r: r[0])
         xs = np.array([x for x, _, _ in rows])
         ys = np.radians([m.value for _, m, _ in rows])
-        p, err = rr.levenberg_marquardt(rr.scattering_fit_law, xs, ys,
-                                        rr.fit_start(xs, ys))
+        p, err = rr.fitted(pa.fits.scattering_angle, xs, ys)
         at = [math.degrees(float(rr.scattering_fit_law(x, *p))) for x in STUDY_X]
         fits.add(e, *(Measured(v, de) for v, de in zip(p, err)), *at)
         s.results.setdefault("psi0_momentum_fit", {})[f"e{e:g}"] = {
@@ -297,10 +296,8 @@ def slope_a(ctx, rr, with_wall, own, s):
             if not pts:
                 continue
             i, mu = rr.pooled_means(pts, "I", "mu_star")
-            a, _ = rr.line_through_origin(i, mu)
-            (mu0, a_free), _ = rr.straight_line(i, mu)
-            seeds = [(rr.line_through_origin(x, y)[0], *rr.straight_line(x, y)[0])
-                     for x, y in rr.pooled_per_seed(pts, "I", "mu_star")]
+            a, mu0, a_free = rr.mu_lines(i, mu)
+            seeds = [rr.mu_lines(x, y) for x, y in rr.pooled_per_seed(pts, "I", "mu_star")]
             errors = [cd.spread_over_seeds(c).error for c in zip(*seeds)] if seeds \
                 else [math.nan] * 3
             row = [Measured(a, errors[0]), Measured(mu0, errors[1]),
@@ -397,19 +394,17 @@ def ratio_cell(rr, point, numerator, denominator):
 # for phi counted by centres: n times it, assuming the flow keeps the mix (no segregation).
 MEAN_DISK_AREA = math.pi / 4 * (1.0 + 0.8 ** 2) / 2
 VOLUME, CENTRES = "grain area inside the bin", "centres x mean disk area"
-POOLED_LAWS = (  # law, x field, y field, y scale, model, parameter names, how phi is counted
-    ("6.2", "I_T", "phi", 1.0, pa.packing_6_2_6_3, ("phi_T", "a_T", "alpha_T"), VOLUME),
-    ("6.3", "I_s", "phi", 1.0, pa.packing_6_2_6_3, ("phi_s", "a_s", "alpha_s"), VOLUME),
-    ("6.9", "I_s", "mu_star", 1.0, pa.friction_6_9, ("mu_s", "mu_max", "I_0"), ""),
-    ("6.10", "I_s", "mu_star", 1.0, pa.friction_6_10, ("b", "beta"), ""),
-    ("6.2", "I_T", "n", MEAN_DISK_AREA, pa.packing_6_2_6_3, ("phi_T", "a_T", "alpha_T"),
+POOLED_LAWS = (  # law, x field, y field, y scale, granjet's fit, parameter names, phi counted as
+    ("6.2", "I_T", "phi", 1.0, pa.fits.phi_of_i_t, ("phi_T", "a_T", "alpha_T"), VOLUME),
+    ("6.3", "I_s", "phi", 1.0, pa.fits.phi_of_i_s, ("phi_s", "a_s", "alpha_s"), VOLUME),
+    ("6.9", "I_s", "mu_star", 1.0, pa.fits.mu_saturating, ("mu_s", "mu_max", "I_0"), ""),
+    ("6.10", "I_s", "mu_star", 1.0, pa.fits.mu_power, ("b", "beta"), ""),
+    ("6.2", "I_T", "n", MEAN_DISK_AREA, pa.fits.phi_of_i_t, ("phi_T", "a_T", "alpha_T"),
      CENTRES),
-    ("6.3", "I_s", "n", MEAN_DISK_AREA, pa.packing_6_2_6_3, ("phi_s", "a_s", "alpha_s"),
+    ("6.3", "I_s", "n", MEAN_DISK_AREA, pa.fits.phi_of_i_s, ("phi_s", "a_s", "alpha_s"),
      CENTRES),
 )
 STUDY_FITS_2D_BY_NAME = {name: (value, error) for name, _, value, error in STUDY_FITS_2D}
-POOLED_START = {"6.2": (0.85, 1.0, 1.2), "6.3": (0.83, 3.0, 1.3), "6.9": (0.02, 0.5, 0.1),
-                "6.10": (1.0, 0.6)}
 
 
 def pooled_2d(ctx, s, rr):
@@ -431,14 +426,14 @@ def pooled_2d(ctx, s, rr):
             continue
         found = True
         origin = pts[0].param("analysis.height_origin", "wall_centres")
-        for law, x_name, y_name, scale, model, names, counted in POOLED_LAWS:
+        for law, x_name, y_name, scale, fit, names, counted in POOLED_LAWS:
             x, y = rr.pooled_means(pts, x_name, y_name)
             keep = x > 0
-            p, err = rr.levenberg_marquardt(model, x[keep], scale * y[keep], POOLED_START[law])
+            p, err = rr.fitted(fit, x[keep], scale * y[keep])
             per_seed = []
             for sx, sy in rr.pooled_per_seed(pts, x_name, y_name):
                 k = sx > 0
-                per_seed.append(rr.levenberg_marquardt(model, sx[k], scale * sy[k], p)[0])
+                per_seed.append(rr.fitted(fit, sx[k], scale * sy[k])[0])
             spread = [cd.spread_over_seeds(c).error for c in zip(*per_seed)] if per_seed \
                 else [math.nan] * len(names)
             key = origin + ("_centres" if counted == CENTRES else "")

@@ -81,84 +81,14 @@ def restitution_for(point):
     return pa.effective_restitution_2_55(e, mu_p) if mu_p > 0 else e
 
 
-# ---- Fits with numpy (no scipy) ------------------------------------------------------------
-def line_through_origin(x, y):
-    """y = a x by least squares: (a, standard error of a)."""
-    x, y = finite_pairs(x, y)
-    if x.size < 2:
-        return math.nan, math.nan
-    a = float(x @ y / (x @ x))
-    rss = float(((y - a * x) ** 2).sum())
-    return a, math.sqrt(rss / (x.size - 1) / float(x @ x))
+# ---- Fits: granjet's own (analysis/fits.hpp, Eigen's Levenberg-Marquardt) ------------------
+def fitted(fit, x, y):
+    """(values, standard errors) of one of granjet.fits' fits, in the order of its parameters;
+    points where x or y is not finite are left out by the fit itself."""
+    pairs = list(fit(np.ravel(x), np.ravel(y))["parameters"].values())
+    return np.array([v for v, _ in pairs]), np.array([e for _, e in pairs])
 
 
-def straight_line(x, y):
-    """y = b + a x by least squares: ((b, a), their standard errors)."""
-    x, y = finite_pairs(x, y)
-    if x.size < 3:
-        return (math.nan, math.nan), (math.nan, math.nan)
-    design = np.column_stack([np.ones_like(x), x])
-    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
-    rss = float(((y - design @ coefficients) ** 2).sum())
-    covariance = rss / (x.size - 2) * np.linalg.inv(design.T @ design)
-    return tuple(coefficients), tuple(np.sqrt(np.diag(covariance)))
-
-
-def finite_pairs(x, y):
-    x, y = np.ravel(np.asarray(x, dtype=float)), np.ravel(np.asarray(y, dtype=float))
-    keep = np.isfinite(x) & np.isfinite(y)
-    return x[keep], y[keep]
-
-
-def levenberg_marquardt(model, x, y, start, iterations=500):
-    """Least squares of y = model(x, *p) from `start`: (p, standard errors), NaN when fewer
-    points than parameters + 1 or the normal matrix is singular."""
-    x, y = finite_pairs(x, y)
-    p = np.array(start, dtype=float)
-    if x.size <= p.size:
-        return np.full(p.size, np.nan), np.full(p.size, np.nan)
-
-    def residual(q):
-        return y - model(x, *q)
-
-    def jacobian(q):
-        columns = []
-        for k in range(q.size):
-            h = 1e-7 * max(1.0, abs(q[k]))
-            step = np.zeros_like(q)
-            step[k] = h
-            columns.append((model(x, *(q + step)) - model(x, *(q - step))) / (2 * h))
-        return np.column_stack(columns)
-
-    r = residual(p)
-    cost, damping = float(r @ r), 1e-3
-    for _ in range(iterations):
-        j = jacobian(p)
-        normal = j.T @ j
-        try:
-            step = np.linalg.solve(normal + damping * np.diag(np.diag(normal)), j.T @ r)
-        except np.linalg.LinAlgError:
-            break
-        trial = p + step
-        r_trial = residual(trial)
-        cost_trial = float(r_trial @ r_trial) if np.isfinite(r_trial).all() else math.inf
-        if cost_trial < cost:
-            converged = cost - cost_trial < 1e-14 * max(cost, 1e-300)
-            p, r, cost, damping = trial, r_trial, cost_trial, damping / 10
-            if converged:
-                break
-        else:
-            damping *= 10
-            if damping > 1e12:
-                break
-    try:
-        covariance = cost / (x.size - p.size) * np.linalg.inv(jacobian(p).T @ jacobian(p))
-    except np.linalg.LinAlgError:
-        return p, np.full(p.size, np.nan)
-    return p, np.sqrt(np.abs(np.diag(covariance)))
-
-
-# ---- Reading points ------------------------------------------------------------------------
 def ensemble_field(point, name):
     """(mean, std) [layers][lateral] of an ensemble field, or None."""
     a = point.ensemble()
@@ -341,7 +271,7 @@ def section_f4_2(ctx):
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     table = Table("psi0", ["e", "X", "psi0 [deg]"], "Ensemble mean ± std over seeds.")
     fits = Table("fit", ["e", "C0 [deg]", "C1 [deg]", "C2 [deg]"],
-                 "Interpolation fit to the ensemble means (numpy Levenberg-Marquardt); error: "
+                 "Interpolation fit to the ensemble means (granjet.fits.scattering_angle); error: "
                  "standard error of the fit.")
     for k, (e, rows) in enumerate(sorted(by_e.items())):
         rows.sort()
@@ -351,7 +281,7 @@ def section_f4_2(ctx):
             table.add(e, x, m)
         pa.errorbar(ax, xs, ys, yerr=[m.error for _, m in rows], marker=pa.MARKERS[k],
                     color=COLOURS[k], label=f"e = {e:g}")
-        p, err = levenberg_marquardt(scattering_fit_law, xs, ys, fit_start(xs, ys))
+        p, err = fitted(pa.fits.scattering_angle, xs, ys)
         fits.add(e, *(Measured(v, de) for v, de in zip(p, err)))
         if np.isfinite(p).all():
             grid = np.linspace(0, xs.max() * 1.05, 200)
@@ -367,14 +297,6 @@ def section_f4_2(ctx):
     s.compare(f"the fitted C0, C1, C2 are above; {PUBLISHED} (and section Readings, psi0 by "
               "the momentum balance).")
     return s
-
-
-def fit_start(x, y):
-    """C0 the largest angle, C2 the smallest, C1 the initial slope."""
-    if x.size < 2:
-        return [math.nan] * 3
-    slope = (y[1] - y[0]) / (x[1] - x[0]) if x[1] != x[0] else 1.0
-    return [float(y.max()) + 1.0, max(abs(slope), 1.0), float(y.min()) - 1.0]
 
 
 def section_f4_3(ctx):
@@ -746,10 +668,8 @@ def section_f5_7(ctx):
                 marker = pa.MARKERS[int(round(p.number("jet.phi_tilde") * 10)) % 10]
                 pa.errorbar(ax, f_i[0][0], f_mu[0][0], xerr=f_i[1][0], yerr=f_mu[1][0],
                             marker=marker, color=colour, ms=4)
-        a, _ = line_through_origin(i, mu)
-        (mu0, a_free), _ = straight_line(i, mu)
-        seed_fits = [(line_through_origin(x, y)[0], *straight_line(x, y)[0])
-                     for x, y in pooled_per_seed(pts, "I", "mu_star")]
+        a, mu0, a_free = mu_lines(i, mu)
+        seed_fits = [mu_lines(x, y) for x, y in pooled_per_seed(pts, "I", "mu_star")]
         errors = [cd.spread_over_seeds(col).error for col in zip(*seed_fits)] if seed_fits \
             else [math.nan] * 3
         row = (Measured(a, errors[0]), Measured(mu0, errors[1]), Measured(a_free, errors[2]))
@@ -773,6 +693,11 @@ def section_f5_7(ctx):
     s.compare(f"{PUBLISHED}; the study finds mu* through the origin, so the intercept "
               "mu0 should be zero within its error.")
     return s
+
+
+def mu_lines(i, mu):
+    """F5.7's a of mu* = a I, and mu_0, a of the free-intercept reading mu* = mu_0 + a I."""
+    return (fitted(pa.fits.mu_linear, i, mu)[0][0], *fitted(pa.fits.mu_affine, i, mu)[0])
 
 
 def pooled_means(points, x_name, y_name):

@@ -128,6 +128,35 @@ TEST(Fits, LinearFrictionThroughOriginRecovered) {
   expect_recovered(fit_mu_linear(d.x, d.y), {1.3});
 }
 
+// The free-intercept line against the closed form of least squares: slope S_xy/S_xx, intercept
+// mean(y) - slope mean(x), and the textbook standard errors s^2/S_xx and s^2 (1/n + xbar^2/S_xx).
+TEST(Fits, AffineFrictionMatchesTheClosedForm) {
+  const auto d = make_data([](double i) { return 0.1 + 1.3 * i; }, 0.01, 0.3, 20, 0.01, 19);
+  const double n = static_cast<double>(d.x.size());
+  double xbar = 0, ybar = 0;
+  for (std::size_t k = 0; k < d.x.size(); ++k) xbar += d.x[k] / n, ybar += d.y[k] / n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < d.x.size(); ++k) {
+    sxx += (d.x[k] - xbar) * (d.x[k] - xbar);
+    sxy += (d.x[k] - xbar) * (d.y[k] - ybar);
+  }
+  const double slope = sxy / sxx, intercept = ybar - slope * xbar;
+  double ssr = 0;
+  for (std::size_t k = 0; k < d.x.size(); ++k) {
+    const double r = d.y[k] - intercept - slope * d.x[k];
+    ssr += r * r;
+  }
+  const double s2 = ssr / (n - 2);
+  const FitResult fit = fit_mu_affine(d.x, d.y);
+  EXPECT_TRUE(fit.converged);
+  EXPECT_NEAR(fit["a"], slope, 1e-9);
+  EXPECT_NEAR(fit["mu_0"], intercept, 1e-9);
+  EXPECT_NEAR(fit.error_of("a"), std::sqrt(s2 / sxx), 1e-6 * std::sqrt(s2 / sxx));
+  EXPECT_NEAR(fit.error_of("mu_0"), std::sqrt(s2 * (1 / n + xbar * xbar / sxx)),
+              1e-6 * std::sqrt(s2 * (1 / n + xbar * xbar / sxx)));
+  EXPECT_NEAR(fit.ssr, ssr, 1e-12);
+}
+
 TEST(Fits, ScatteringAngleInterpolationRecovered) {
   // psi0 rises as C1 X from C2 and saturates at C0 (X = D_tar/D_jet).
   const auto d = make_data([](double x) { return scattering_angle_law(x, 1.9, 1.2, 0.3); }, 0.2,
@@ -148,10 +177,17 @@ TEST(Fits, NonFinitePointsAndNonPositiveISkipped) {
   EXPECT_EQ(fit_mu_power(d.x, d.y).points, 30);
 }
 
-TEST(Fits, TooFewPointsGiveNaNErrors) {
+// Fewer points than parameters: no value at all (not the initial guess); as many: the values
+// pass through the points, with no error to give.
+TEST(Fits, TooFewPointsGiveNaN) {
   const std::vector<double> x{0.1, 0.2}, y{0.3, 0.4};
-  const FitResult fit = fit_mu_saturating(x, y);
-  EXPECT_TRUE(std::isnan(fit.error[0]));
+  const FitResult few = fit_mu_saturating(x, y);
+  EXPECT_TRUE(std::isnan(few.value[0]) && std::isnan(few.value[2]) && std::isnan(few.ssr));
+  EXPECT_TRUE(std::isnan(few.error[0]));
+  const FitResult exact = fit_mu_affine(x, y);
+  EXPECT_NEAR(exact["a"], 1.0, 1e-9);
+  EXPECT_NEAR(exact["mu_0"], 0.2, 1e-9);
+  EXPECT_TRUE(std::isnan(exact.error_of("a")));
 }
 
 // cov = s^2 (J^T J)^-1 is calibrated: over 200 noisy data sets, the fraction of fits whose I_0
