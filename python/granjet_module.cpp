@@ -398,6 +398,15 @@ PYBIND11_MODULE(granjet, m) {
       py::arg("e"), py::arg("t_c"), py::arg("spring_ratio") = 0.2, py::arg("damping_ratio") = 0.5,
       "[3.4], [3.5]: the linear law's k_n, eta_n (and k_t, eta_t) of two unit grains whose "
       "head-on collision has restitution e and lasts t_c.");
+  contact.def(
+      "collision",
+      [](double k_n, double eta_n) {
+        const dem::BinaryCollision c = dem::binary_collision(k_n, eta_n);
+        return py::dict("e"_a = c.restitution, "t_c"_a = c.contact_time);
+      },
+      py::arg("k_n"), py::arg("eta_n"),
+      "[3.4], [3.5] the other way: the restitution e and duration t_c of the head-on collision "
+      "of two unit grains under the linear law (k_n, eta_n); NaN when overdamped.");
 
   py::module_ fits = m.def_submodule("fits", "The study's laws and their least-squares fits.");
   namespace an = granjet::analysis;

@@ -478,8 +478,8 @@ def conventions(ctx, s, rr):
                                                     for v in field[0][layer]))
         s.add_table(phi_table)
     k_n, eta_n = FE1_PRINTED
-    t_c = math.pi / math.sqrt(2 * k_n - eta_n ** 2)  # [3.4], m = 1
-    e = math.exp(-t_c * eta_n)  # [3.5]
+    collision = pa.granjet.contact.collision(k_n, eta_n)  # [3.4]-[3.5] the other way
+    t_c, e = collision["t_c"], collision["e"]
     s.results["fe1_printed"] = {"k_n": k_n, "eta_n": eta_n, "t_c": t_c, "e": e}
     s.add(f"FE.1's printed k_n = {k_n:g}, eta_n = {eta_n:g} give t_c = {format_number(t_c, 3)} "
           f"and e = {format_number(e, 3)} under [3.4]-[3.5], not the t_c = 0.01 of its label "

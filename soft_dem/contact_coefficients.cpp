@@ -15,4 +15,11 @@ ContactCoefficients contact_coefficients(const ContactSpec& spec) {
   return {kn, eta_n, spec.spring_ratio * kn, spec.damping_ratio * eta_n, spec.friction, floor};
 }
 
+BinaryCollision binary_collision(double kn, double eta_n) {
+  const double omega_squared = 2.0 * kn - eta_n * eta_n;  // m = 1
+  if (!(omega_squared > 0.0)) return {std::nan(""), std::nan("")};
+  const double tc = std::numbers::pi / std::sqrt(omega_squared);  // [3.4]
+  return {std::exp(-tc * eta_n), tc};                             // [3.5]
+}
+
 }  // namespace granjet::dem

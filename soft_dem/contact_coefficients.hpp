@@ -24,4 +24,12 @@ struct ContactCoefficients {
 // mass m = 1, solved for (k_n, eta_n).
 ContactCoefficients contact_coefficients(const ContactSpec& spec);
 
+// The other way: the head-on collision (e, t_c) of two unit grains that a given (k_n, eta_n)
+// gives by [3.4]-[3.5]; NaN when the dashpot is overdamped (2 k_n <= eta_n^2: no rebound).
+struct BinaryCollision {
+  double restitution = 0.0;
+  double contact_time = 0.0;
+};
+BinaryCollision binary_collision(double kn, double eta_n);
+
 }  // namespace granjet::dem

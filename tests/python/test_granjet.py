@@ -151,6 +151,12 @@ def test_theory_returns_what_the_library_computes():
     a2 = 16 * (1 - e) * (1 - 2 * e ** 2) / (81 - 17 * e + 30 * e ** 2 * (1 - e))  # [2.37]
     assert t.sonine_a2(e) == pytest.approx(a2, rel=1e-12)
     assert t.viscosity_star(0.3, 0.75) == pytest.approx(3.430280, abs=2e-6)
+    c = granjet.contact.coefficients(0.75, 0.1)  # T4.1's row e = 0.75, t_c = 0.1
+    assert c["k_n"] == pytest.approx(4.98e2, rel=5e-3)
+    assert c["eta_n"] == pytest.approx(2.88, rel=5e-3)
+    back = granjet.contact.collision(c["k_n"], c["eta_n"])
+    assert back["e"] == pytest.approx(0.75, rel=1e-13)
+    assert back["t_c"] == pytest.approx(0.1, rel=1e-13)
 
 
 def test_theory_and_laws_take_arrays_element_by_element():

@@ -41,9 +41,11 @@ TEST(ContactCoefficients, InvertBackToTcAndE) {
   spec.restitution = 0.6;
   spec.contact_time = 0.013;
   const ContactCoefficients c = contact_coefficients(spec);
-  const double tc = std::numbers::pi / std::sqrt(2.0 * c.kn - c.eta_n * c.eta_n);  // [3.4], m = 1
-  EXPECT_NEAR(tc, 0.013, 1e-15);
-  EXPECT_NEAR(std::exp(-tc * c.eta_n), 0.6, 1e-14);  // [3.5]
+  const BinaryCollision back = binary_collision(c.kn, c.eta_n);
+  EXPECT_NEAR(back.contact_time, 0.013, 1e-15);
+  EXPECT_NEAR(back.restitution, 0.6, 1e-14);
+  // Overdamped: no rebound, so no (e, t_c).
+  EXPECT_TRUE(std::isnan(binary_collision(1.0, 2.0).restitution));
 }
 
 }  // namespace
