@@ -2,7 +2,7 @@
 
 #include <ostream>
 
-#include "app/version.hpp"
+#include "run/version.hpp"
 #include "campaign/campaign_file.hpp"
 #include "campaign/campaign_plan.hpp"
 #include "campaign/campaign_report.hpp"

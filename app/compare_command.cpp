@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
-#include "app/run_command.hpp"
+#include "run/run_command.hpp"
 #include "run/backend_factory.hpp"
 #include "run/run_budget.hpp"
 #include "run/scene_file.hpp"

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <span>
@@ -26,7 +27,9 @@
 #include "core/scene.hpp"
 #include "run/backend_factory.hpp"
 #include "run/frame_replay.hpp"
+#include "run/output_paths.hpp"
 #include "run/run_budget.hpp"
+#include "run/run_command.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 
@@ -107,23 +110,64 @@ struct DimensionOf<std::unique_ptr<Simulator<D>>> {
 
 class PySimulator {
  public:
-  PySimulator(const Scene& requested, const std::string& backend, int threads) {
-    Scene scene = requested;
-    if (threads > 0) scene.run.threads = threads;
-    check_run_budget(scene, backend, physical_memory_bytes());
-    scene_ = check_backend(backend, scene).resolved;
-    backend_ = backend;
-    if (scene_.dimension == 2)
-      sim_ = make_simulator<2>(backend, scene_);
+  PySimulator(const Scene& requested, const std::string& backend, int threads)
+      : requested_(requested), backend_(backend) {
+    if (threads > 0) requested_.run.threads = threads;
+    check_run_budget(requested_, backend, physical_memory_bytes());
+    support_ = check_backend(backend, requested_);
+    if (scene().dimension == 2)
+      sim_ = make_simulator<2>(backend, scene());
     else
-      sim_ = make_simulator<3>(backend, scene_);
+      sim_ = make_simulator<3>(backend, scene());
+  }
+
+  // `granjet run` of this simulator into `out` (run/run_command.hpp): the same file, sidecars,
+  // log and summary as the command's for the same scene. From t = 0 only, as the command runs.
+  py::object run(const std::string& out, const std::string& summary, bool log, bool quiet) {
+    if (time() != 0.0)
+      throw py::value_error(
+          "run() writes a run from t = 0, as granjet run does; this simulator "
+          "is at t = " +
+          std::to_string(time()) + ": make a new one");
+    RunOptions options;
+    options.scene_file = "(Python granjet.Simulator)";
+    options.backend = backend_;
+    options.out = out;
+    options.summary = summary;
+    options.log = log;
+    options.quiet = quiet;
+    check_outputs({}, run_outputs(options.out, options.summary));
+    std::ostream silent(nullptr);
+    RunOutcome outcome;
+    {
+      py::gil_scoped_release unlocked;
+      outcome = std::visit(
+          [&](auto& sim) {
+            return run_simulation(*sim, requested_, support_, options, options.out,
+                                  quiet ? silent : std::cout);
+          },
+          sim_);
+    }
+    const std::string status = outcome.summary.value("status", std::string());
+    if (outcome.exit_code >= 128) {  // Ctrl-C: the run is kept, with a checkpoint
+      PyErr_SetString(
+          PyExc_KeyboardInterrupt,
+          ("the run is kept in " + out + ".partial; granjet resume continues it").c_str());
+      throw py::error_already_set();
+    }
+    if (outcome.exit_code != 0) {  // the blow-up's message is the run's status
+      const py::object blow_up = py::module_::import("granjet").attr("BlowUpError");
+      PyErr_SetString(blow_up.ptr(), (status + "; frames kept in " + out + ".partial").c_str());
+      throw py::error_already_set();
+    }
+    return py::module_::import("json").attr("loads")(outcome.summary.dump());
   }
 
   // Advances in stretches of 50 steps, the GIL released, and lets Python handle its signals in
   // between: Ctrl-C raises KeyboardInterrupt at a step's end and the simulator stays usable.
   // Stopping between stretches changes nothing: the run loop stops where its observers ask.
   void advance_to(double t) {
-    const double stretch = 50.0 * scene_.dt(), half_step = 0.5 * scene_.dt();
+    const double stretch = 50.0 * scene().dt(), half_step = 0.5 * scene().dt();
     while (time() < t - half_step) {
       // The last stretch ends at t itself: a sum of stretches would round beside it.
       const double next = time() + stretch < t - half_step ? time() + stretch : t;
@@ -138,8 +182,8 @@ class PySimulator {
   double time() const {
     return std::visit([](const auto& sim) { return sim->time(); }, sim_);
   }
-  int dimension() const { return scene_.dimension; }
-  const Scene& scene() const { return scene_; }
+  int dimension() const { return scene().dimension; }
+  const Scene& scene() const { return support_.resolved; }
   const std::string& backend() const { return backend_; }
 
   py::dict energies() const {
@@ -209,8 +253,9 @@ class PySimulator {
   }
 
  private:
-  Scene scene_;
+  Scene requested_;
   std::string backend_;
+  SceneSupport support_;
   std::variant<std::unique_ptr<Simulator<2>>, std::unique_ptr<Simulator<3>>> sim_;
 };
 
@@ -322,6 +367,12 @@ PYBIND11_MODULE(granjet, m) {
            "threads: run.threads (0: the scene's); the results do not depend on it.")
       .def("advance_to", &PySimulator::advance_to, py::arg("t"),
            "Advances to time t (to within half a step); Ctrl-C stops it at a step's end.")
+      .def("run", &PySimulator::run, py::arg("out"), py::arg("summary") = "",
+           py::arg("log") = false, py::arg("quiet") = true,
+           "Runs the scene from t = 0 to run.t_end into `out` as `granjet run` does (the same "
+           "H5MD file, sidecars, analysis; the log and the JSON summary if asked for) and "
+           "returns the summary. Ctrl-C keeps the run as OUT.partial (KeyboardInterrupt); a "
+           "blow-up raises BlowUpError.")
       .def_property_readonly("time", &PySimulator::time)
       .def_property_readonly("dimension", &PySimulator::dimension)
       .def_property_readonly("backend", &PySimulator::backend)

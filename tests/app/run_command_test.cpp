@@ -93,7 +93,7 @@ TEST_F(GranjetCommand, BadInputExitsTwoNamingTheKeyAndWritesNothing) {
   EXPECT_EQ(granjet("frobnicate"), 2);
 }
 
-// --version names the commit it was built from (app/commit.cmake; "unknown" outside git).
+// --version names the commit it was built from (run/commit.cmake; "unknown" outside git).
 TEST_F(GranjetCommand, VersionNamesTheCommit) {
   ASSERT_EQ(granjet("--version"), 0);
   std::ifstream in(dir_ / "stdout.txt");

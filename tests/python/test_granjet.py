@@ -1,5 +1,6 @@
 """The Python module: scenes with the CLI's keys and errors, simulators on both backends whose
-trajectories are the CLI's bit for bit, NumPy views without copies, Ctrl-C, kinetic theory.
+trajectories and files are the CLI's bit for bit, NumPy views without copies, Ctrl-C, kinetic
+theory.
 
 Run by ctest (label python) with pytest from Debian and PYTHONPATH at the built module;
 GRANJET_BINARY and GRANJET_SCENES_DIR name the command and the shipped scenes."""
@@ -86,6 +87,45 @@ def test_simulator_trajectory_is_the_clis_bit_for_bit(backend, tmp_path):
     assert np.array_equal(sim.ids[order], ids)
     assert np.array_equal(sim.positions[order], pos)
     assert np.array_equal(sim.velocities[order], vel)
+
+
+SMALL_GAS3D = ["gas.grains=500", "gas.equilibration=1", "run.t_end=3"]
+
+
+@pytest.mark.parametrize("backend", ["soft_dem", "event_driven"])
+@pytest.mark.parametrize("name, overrides", [("jet2d.ini", SMALL_JET2D),
+                                             ("gas3d.ini", SMALL_GAS3D)])
+def test_run_writes_the_clis_file(name, overrides, backend, tmp_path):
+    cli, py = tmp_path / "cli.h5", tmp_path / "py.h5"
+    subprocess.run([BINARY, "run", scene_file(name), "--backend", backend, "--quiet", "--no-log",
+                    "--out", str(cli)] + sum((["--set", o] for o in overrides), []),
+                   check=True, capture_output=True)
+    sim = granjet.Simulator(granjet.Scene.from_file(scene_file(name), overrides), backend)
+    summary = sim.run(str(py))
+    assert summary["status"] == "complete" and summary["output"] == str(py)
+    # Every dataset and attribute alike (h5diff exits 1 on a difference).
+    diff = subprocess.run(["h5diff", str(cli), str(py)], capture_output=True, text=True)
+    assert diff.returncode == 0, diff.stdout
+    assert sim.time == pytest.approx(summary["time"])
+    with pytest.raises(ValueError, match="from t = 0"):
+        sim.run(str(tmp_path / "again.h5"))
+    sim.advance_to(sim.time + 0.5)  # the simulator goes on after its run
+
+
+def test_ctrl_c_in_run_keeps_a_resumable_partial(tmp_path):
+    out = tmp_path / "run.h5"
+    sim = granjet.Simulator(granjet.Scene.from_file(scene_file("jet3d.ini"),
+                                                    ["jet.grains=4000", "run.t_end=1000",
+                                                     "run.checkpoint_interval=0.5"]))
+    timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt, match="granjet resume"):
+        sim.run(str(out))
+    timer.join()
+    assert not out.exists()
+    info = subprocess.run([BINARY, "info", str(out) + ".partial"], capture_output=True,
+                          text=True, check=True).stdout
+    assert "granjet resume continues from it" in info
 
 
 def test_arrays_are_read_only_views_without_copies():

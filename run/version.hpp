@@ -1,6 +1,6 @@
 #pragma once
 
-#include "app/commit.hpp"  // kCommit, generated at build time by app/commit.cmake
+#include "run/commit.hpp"  // kCommit, generated at build time by run/commit.cmake
 
 namespace granjet {
 // From the CMake project version, so there is one place to bump it.

@@ -1,4 +1,4 @@
-#include "app/run_command.hpp"
+#include "run/run_command.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,9 +10,6 @@
 
 #include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
-#include "app/progress_rows.hpp"
-#include "app/run_log.hpp"
-#include "app/version.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
 #include "run/backend_factory.hpp"
@@ -21,12 +18,15 @@
 #include "run/frame_output.hpp"
 #include "run/interrupts.hpp"
 #include "run/output_paths.hpp"
+#include "run/progress_rows.hpp"
 #include "run/run_budget.hpp"
+#include "run/run_log.hpp"
 #include "run/run_loop.hpp"
 #include "run/run_profile.hpp"
 #include "run/run_warnings.hpp"
 #include "run/scene_file.hpp"
 #include "run/scene_kinds.hpp"
+#include "run/version.hpp"
 
 namespace granjet {
 namespace {
@@ -207,17 +207,14 @@ std::string observe_to_end(Simulator<D>& sim, const Scene& scene, const RunObser
   return "interrupted";
 }
 
-// One run of the scene as the backend resolves it: the simulator advanced to run.t_end under
-// its observers (the scene's measurements, then frames, progress rows and checkpoints), its file
-// published when complete.
+}  // namespace
+
 template <int D>
-int run_scene(const Scene& requested, const RunOptions& options,
-              const std::filesystem::path& out_file, std::ostream& out,
-              const StateArchive* resume_from) {
+RunOutcome run_simulation(Simulator<D>& sim, const Scene& requested, const SceneSupport& support,
+                          const RunOptions& options, const std::filesystem::path& out_file,
+                          std::ostream& out, const StateArchive* resume_from) {
   const Backend& backend = backend_named(options.backend);
-  const SceneSupport support = check_backend(backend.name, requested);
   const Scene& scene = support.resolved;
-  std::unique_ptr<Simulator<D>> sim = make_simulator<D>(backend.name, scene);
   RunLog log(options.log ? log_path_for(out_file) : std::filesystem::path(), resume_from != nullptr,
              options.quiet ? nullptr : &out);
   write_log_head(log, options, scene, out_file, resume_from != nullptr);
@@ -229,48 +226,49 @@ int run_scene(const Scene& requested, const RunOptions& options,
   for (const std::string& note : support.notes) say(backend.name + ": " + note);
   const std::vector<std::string> warnings = run_warnings(scene, backend);
   for (const std::string& warning : warnings) say("warning: " + warning);
-  const auto grains_initial = static_cast<std::int64_t>(sim->particles().size());
+  const auto grains_initial = static_cast<std::int64_t>(sim.particles().size());
 
   const std::vector<std::unique_ptr<analysis::RunObserver<D>>> measurements =
-      scene_measurements(scene, *sim);
+      scene_measurements(scene, sim);
   const std::unique_ptr<analysis::H5mdWriter<D>> writer =
       open_run_file<D>(out_file, scene, requested_ini(requested, support), options,
-                       sim->particles().size(), resume_from != nullptr);
+                       sim.particles().size(), resume_from != nullptr);
   FrameOutput<D> frames(*writer, scene);
   ProgressRows<D> progress(log.report(), scene, backend.counts_events);
   RunObservers<D> observers;
-  CheckpointSchedule<D> checkpoints(scene, [&] { write_checkpoint(*sim, observers, *writer); });
+  CheckpointSchedule<D> checkpoints(scene, [&] { write_checkpoint(sim, observers, *writer); });
   for (const auto& m : measurements) observers.push_back(m.get());
   observers.insert(observers.end(), {&frames, &progress, &checkpoints});
   if (resume_from) {
-    restore_checkpoint(*sim, observers, *resume_from);
-    if (sim->time() > scene.run.t_end)
+    restore_checkpoint(sim, observers, *resume_from);
+    if (sim.time() > scene.run.t_end)
       throw InputError("run.t_end",
                        std::to_string(scene.run.t_end) +
-                           " lies before the checkpoint at t = " + std::to_string(sim->time()));
+                           " lies before the checkpoint at t = " + std::to_string(sim.time()));
   } else {
-    frames.start(*sim);
+    frames.start(sim);
   }
 
   log.report() << (resume_from ? "continuing " : "writing ") << out_file.string() << " ("
-               << backend.name << ", " << D << "D, " << sim->particles().size() << " grains, t_end "
+               << backend.name << ", " << D << "D, " << sim.particles().size() << " grains, t_end "
                << scene.run.t_end << ")\n";
   progress.header();
   const Interrupts interrupts;
-  sim->stop_when(&interrupts.stop_flag());
-  if (options.profile) sim->profile().enable();
+  sim.stop_when(&interrupts.stop_flag());
+  if (options.profile) sim.profile().enable();
   const auto loop_start = std::chrono::steady_clock::now();
   const std::string status =
-      observe_to_end(*sim, scene, observers, frames, *writer, interrupts, say);
+      observe_to_end(sim, scene, observers, frames, *writer, interrupts, say);
+  sim.stop_when(nullptr);  // the flag goes with `interrupts`; the simulator may live on
   const double loop_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 
   const double wall = progress.wall_seconds();
   const double cpu = progress.cpu_seconds();
-  nlohmann::json summary = summary_json(scene, backend, *sim, grains_initial, wall, cpu, status);
+  nlohmann::json summary = summary_json(scene, backend, sim, grains_initial, wall, cpu, status);
   if (!warnings.empty()) summary["warnings"] = warnings;
   if (!support.adaptations.empty()) summary["adaptations"] = adaptations_json(support);
-  for (analysis::RunObserver<D>* o : observers) o->summarize(*sim, summary);
+  for (analysis::RunObserver<D>* o : observers) o->summarize(sim, summary);
   // Everything the run produced goes into its .partial and the sidecars first; the rename to
   // the final name comes last, so a file under that name is complete.
   if (status == "complete") {
@@ -279,10 +277,10 @@ int run_scene(const Scene& requested, const RunOptions& options,
     for (analysis::RunObserver<D>* o : observers)
       if (const std::string line = o->store(partial, out_file, summary); !line.empty()) say(line);
   }
-  const std::string timing = timing_text(summary, sim->stats(), backend.counts_events, wall, cpu);
+  const std::string timing = timing_text(summary, sim.stats(), backend.counts_events, wall, cpu);
   log.report() << timing;
   if (options.profile) {
-    summary["profile"] = profile_json(sim->profile(), loop_seconds, scene.run.threads);
+    summary["profile"] = profile_json(sim.profile(), loop_seconds, scene.run.threads);
     const std::string table = profile_text(summary["profile"]);
     log.report() << table;
     if (options.quiet) out << table;  // asked for: shown even without progress rows
@@ -294,8 +292,27 @@ int run_scene(const Scene& requested, const RunOptions& options,
     writer->publish();
     log.report() << "wrote " << out_file.string() << "\n";
   }
-  if (status == "interrupted") return 128 + interrupts.signal();
-  return status == "complete" ? 0 : 3;
+  if (status == "interrupted") return {128 + interrupts.signal(), summary};
+  return {status == "complete" ? 0 : 3, summary};
+}
+
+template RunOutcome run_simulation<2>(Simulator<2>&, const Scene&, const SceneSupport&,
+                                      const RunOptions&, const std::filesystem::path&,
+                                      std::ostream&, const StateArchive*);
+template RunOutcome run_simulation<3>(Simulator<3>&, const Scene&, const SceneSupport&,
+                                      const RunOptions&, const std::filesystem::path&,
+                                      std::ostream&, const StateArchive*);
+
+namespace {
+
+// One run of the scene as the backend resolves it, into `out_file`.
+template <int D>
+int run_scene(const Scene& requested, const RunOptions& options,
+              const std::filesystem::path& out_file, std::ostream& out,
+              const StateArchive* resume_from) {
+  const SceneSupport support = check_backend(options.backend, requested);
+  const std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, support.resolved);
+  return run_simulation<D>(*sim, requested, support, options, out_file, out, resume_from).exit_code;
 }
 
 }  // namespace

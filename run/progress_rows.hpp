@@ -8,7 +8,7 @@
 #include <string>
 
 #include "analysis/run_observer.hpp"
-#include "app/progress_table.hpp"
+#include "run/progress_table.hpp"
 #include "core/interval_schedule.hpp"
 #include "core/scene.hpp"
 

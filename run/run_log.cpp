@@ -1,4 +1,4 @@
-#include "app/run_log.hpp"
+#include "run/run_log.hpp"
 
 #include <stdexcept>
 

@@ -1,11 +1,18 @@
-// `granjet run`: one scene on one backend, with progress rows, H5MD output and a JSON summary.
+// `granjet run` and `granjet resume` as a library: one scene on one backend to its H5MD file,
+// with progress rows, a log and a JSON summary. The command and the Python module's
+// Simulator.run both come here, so their files are the same.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "core/scene_support.hpp"
+#include "core/simulator.hpp"
+#include "core/state_archive.hpp"
 
 namespace granjet {
 
@@ -16,7 +23,7 @@ struct RunOptions {
   std::filesystem::path out;           // empty: <scene file stem>.h5 in the working directory
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
-  bool log = true;  // <out stem>.log beside the output (app/run_log.hpp)
+  bool log = true;  // <out stem>.log beside the output (run/run_log.hpp)
   // Wall time per phase of the loop and its serial share, reported at the end and in the
   // summary (run/run_profile.hpp).
   bool profile = false;
@@ -31,6 +38,21 @@ struct RunOptions {
 // Returns the process exit code: 0 done, 3 blow-up (the output kept as .partial). Throws
 // InputError (exit 2) for bad input before any file is written.
 int run_command(const RunOptions& options, std::ostream& out);
+
+struct RunOutcome {
+  int exit_code = 0;       // as run_command's
+  nlohmann::json summary;  // what --summary writes
+};
+
+// The run itself, of a simulator made from `support.resolved` (the backend's reading of
+// `requested`) and still at t = 0, or restored from `resume_from`: advanced to run.t_end under
+// the scene's measurements, frames, progress rows and checkpoints, into `out_file` (written as
+// .partial, renamed when complete). options.scene_file and options.overrides only name the run
+// in its log; options.seeds is not read.
+template <int D>
+RunOutcome run_simulation(Simulator<D>& sim, const Scene& requested, const SceneSupport& support,
+                          const RunOptions& options, const std::filesystem::path& out_file,
+                          std::ostream& out, const StateArchive* resume_from = nullptr);
 
 struct ResumeOptions {
   std::filesystem::path partial;       // RUN.h5.partial with a checkpoint

@@ -1,4 +1,4 @@
-#include "app/progress_table.hpp"
+#include "run/progress_table.hpp"
 
 #include <cstdio>
 #include <ostream>
