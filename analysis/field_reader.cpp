@@ -27,15 +27,23 @@ std::vector<std::string> datasets_below(hid_t file, const std::string& group,
   return names;
 }
 
-std::vector<double> read_doubles(hid_t file, const std::string& path, const H5Context& ctx) {
+ShapedValues read_shaped(hid_t file, const std::string& path, const H5Context& ctx) {
   const H5Handle set = ctx.own(H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose, "open", path);
   const H5Handle space = ctx.own(H5Dget_space(set.get()), H5Sclose, "read the shape of", path);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  if (n < 0) ctx.fail("read the shape of", path);
-  std::vector<double> values(static_cast<std::size_t>(n));
-  ctx.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+  if (rank < 0 || n < 0) ctx.fail("read the shape of", path);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  if (H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0)
+    ctx.fail("read the shape of", path);
+  ShapedValues out{{dims.begin(), dims.end()}, std::vector<double>(static_cast<std::size_t>(n))};
+  ctx.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data()),
             "read", path);
-  return values;
+  return out;
+}
+
+std::vector<double> read_doubles(hid_t file, const std::string& path, const H5Context& ctx) {
+  return read_shaped(file, path, ctx).values;
 }
 
 bool ends_with(const std::string& s, std::string_view tail) {
@@ -72,11 +80,22 @@ std::size_t rows_of(hid_t file, const std::string& dataset, const H5Context& ctx
 
 }  // namespace
 
-std::vector<double> read_analysis_values(const std::filesystem::path& file,
-                                         const std::string& dataset) {
+ShapedValues read_shaped_values(const std::filesystem::path& file, const std::string& dataset) {
   const H5Context ctx(file, H5Context::Role::kInput);
   const H5Handle f = ctx.open_read_only();
-  return read_doubles(f.get(), dataset, ctx);
+  return read_shaped(f.get(), dataset, ctx);
+}
+
+std::vector<double> read_analysis_values(const std::filesystem::path& file,
+                                         const std::string& dataset) {
+  return read_shaped_values(file, dataset).values;
+}
+
+std::vector<std::string> list_datasets(const std::filesystem::path& file,
+                                       const std::string& group) {
+  const H5Context ctx(file, H5Context::Role::kInput);
+  const H5Handle f = ctx.open_read_only();
+  return datasets_below(f.get(), group, ctx);
 }
 
 bool has_analysis(const std::filesystem::path& file) {

@@ -26,6 +26,17 @@ RunResult read_run_result(const std::filesystem::path& file);
 std::vector<double> read_analysis_values(const std::filesystem::path& file,
                                          const std::string& dataset);
 
+// The same with its shape (empty for a scalar), for bindings that hand out arrays.
+struct ShapedValues {
+  std::vector<std::size_t> shape;
+  std::vector<double> values;
+};
+ShapedValues read_shaped_values(const std::filesystem::path& file, const std::string& dataset);
+
+// The datasets below `group` (e.g. "/fields", "/observables"), by path relative to it
+// ("stress/rz/mean"), in name order. Throws InputError naming the file when `group` is missing.
+std::vector<std::string> list_datasets(const std::filesystem::path& file, const std::string& group);
+
 // Whether the file holds a stored analysis (/fields and /analysis); false for a missing file.
 bool has_analysis(const std::filesystem::path& file);
 

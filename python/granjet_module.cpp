@@ -307,11 +307,37 @@ class PyFile {
   // Any dataset of doubles, flattened: "/observables/kinetic_energy/value",
   // "/fields/T_g/mean", "/analysis/...".
   py::array_t<double> dataset(const std::string& name) const {
-    const std::vector<double> v = analysis::read_analysis_values(path_, name);
-    return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+    const analysis::ShapedValues v = analysis::read_shaped_values(path_, name);
+    return py::array_t<double>(std::vector<py::ssize_t>(v.shape.begin(), v.shape.end()),
+                               v.values.data());
   }
 
+  // The measured fields by their names in the JSON summary ("T_g", "stress.rz"), each a dict
+  // of its statistics over seeds (mean, std, sem, count) as [layers][lateral] arrays.
+  py::dict fields() const { return grouped("/fields", {"mesh/", "layout/"}); }
+  // The observables' time series by name: {name: {"step", "time", "value"}}.
+  py::dict observables() const { return grouped("/observables", {}); }
+
  private:
+  // The datasets below `group` as {name: {leaf: array}}: "stress/rz/mean" -> ["stress.rz"]
+  // ["mean"]; paths starting with one of `skipped` are left out.
+  py::dict grouped(const std::string& group, const std::vector<std::string>& skipped) const {
+    py::dict out;
+    for (const std::string& path : analysis::list_datasets(path_, group)) {
+      if (std::any_of(skipped.begin(), skipped.end(),
+                      [&](const std::string& s) { return path.rfind(s, 0) == 0; }))
+        continue;
+      const std::size_t slash = path.rfind('/');
+      if (slash == std::string::npos) continue;  // a dataset directly in the group
+      std::string name = path.substr(0, slash);
+      std::replace(name.begin(), name.end(), '/', '.');
+      const py::str key(name);
+      if (!out.contains(key)) out[key] = py::dict();
+      out[key][py::str(path.substr(slash + 1))] = dataset(group + "/" + path);
+    }
+    return out;
+  }
+
   std::string path_;
   analysis::FileSummary summary_;
 };
@@ -404,8 +430,13 @@ PYBIND11_MODULE(granjet, m) {
            "FE.1's T_g(t) in layer (a), -dy < y < 0, over the frames in the analysis window of "
            "a 2D jet: (times, values).")
       .def("dataset", &PyFile::dataset, py::arg("name"),
-           "A dataset of doubles, flattened (e.g. '/observables/kinetic_energy/value', "
-           "'/fields/T_g/mean').");
+           "A dataset of doubles in its shape (e.g. '/observables/kinetic_energy/value', "
+           "'/fields/T_g/mean').")
+      .def_property_readonly("fields", &PyFile::fields,
+                             "The measured fields by name ('T_g', 'stress.rz'): {'mean', 'std', "
+                             "'sem', 'count'} as [layers][lateral] arrays.")
+      .def_property_readonly("observables", &PyFile::observables,
+                             "The observables by name: {'step', 'time', 'value'} arrays.");
   m.def(
       "open", [](const std::string& path) { return PyFile(path); }, py::arg("path"),
       "A run's or an ensemble's file as granjet wrote it.");

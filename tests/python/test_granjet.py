@@ -238,8 +238,16 @@ def test_open_reads_back_what_the_cli_wrote(tmp_path):
     with h5py.File(out, "r") as h5:
         kinetic = h5["observables/kinetic_energy/value"][()]
         t_g = h5["fields/T_g/mean"][()]
-    assert np.array_equal(f.dataset("/observables/kinetic_energy/value"), kinetic.ravel())
+    assert np.array_equal(f.dataset("/observables/kinetic_energy/value"), kinetic)
     assert np.isfinite(t_g).any()
-    assert np.array_equal(f.dataset("/fields/T_g/mean"), t_g.ravel(), equal_nan=True)
+    assert np.array_equal(f.dataset("/fields/T_g/mean"), t_g, equal_nan=True)  # shape kept
+    # By name: the fields as the JSON summary names them, the observables with their times.
+    fields = f.fields
+    assert "mesh" not in fields and "layout" not in fields
+    assert set(fields["T_g"]) == {"mean", "std", "sem", "count"}
+    assert np.array_equal(fields["T_g"]["mean"], t_g, equal_nan=True)
+    assert fields["stress.xy"]["mean"].shape == t_g.shape
+    energy = f.observables["kinetic_energy"]
+    assert np.array_equal(energy["value"], kinetic) and energy["time"][-1] == pytest.approx(6.0)
     with pytest.raises(Exception):
         f.dataset("/fields/no_such_field/mean")
