@@ -57,6 +57,10 @@ class H5Context {
 
   explicit H5Context(std::filesystem::path file, Role role = Role::kOutput)
       : file_(std::move(file)), role_(role) {
+    // Before the library's first call: no clean-up at exit. A file whose last write failed
+    // (a full disk) cannot be closed, and HDF5's own clean-up would crash on it at exit.
+    static const bool kNoCleanUpAtExit = [] { return H5dont_atexit() >= 0; }();
+    (void)kNoCleanUpAtExit;
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }
 
@@ -65,6 +69,8 @@ class H5Context {
   [[noreturn]] void fail(std::string_view action, std::string_view object) const {
     std::string what = "cannot ";
     what.append(action).append(" ").append(object);
+    if (const std::string reason = system_reason(); !reason.empty())
+      what.append(": ").append(reason);
     if (role_ == Role::kInput) throw InputError(file_.string(), what);
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + std::string once inlined.
     std::string message = "'";
@@ -109,6 +115,26 @@ class H5Context {
                               const std::string& value) const {
     write_attribute(file, object, name, string_type(value.size() + 1).get(), dataspace({}).get(),
                     value.c_str());
+  }
+
+  // The operating system's reason for the failure HDF5 just reported, where its error stack
+  // holds one (its file drivers record errno's text: "No space left on device"); else empty.
+  static std::string system_reason() {
+    std::string reason;
+    const auto find = [](unsigned, const H5E_error2_t* error, void* out) -> herr_t {
+      std::string& text = *static_cast<std::string*>(out);
+      if (!text.empty() || error->desc == nullptr) return 0;
+      const std::string_view desc(error->desc), key("error message = '");
+      const std::size_t start = desc.find(key);
+      if (start == std::string_view::npos) return 0;
+      const std::size_t end = desc.find('\'', start + key.size());
+      text =
+          desc.substr(start + key.size(), end == std::string_view::npos ? std::string_view::npos
+                                                                        : end - start - key.size());
+      return 0;
+    };
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, find, &reason);
+    return reason;
   }
 
   // The file, read-only and without HDF5's file lock, so that a user can look into a run's
