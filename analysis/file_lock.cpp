@@ -24,6 +24,8 @@ FileLock::FileLock(const std::filesystem::path& path) {
   }
 }
 
-FileLock::~FileLock() { ::close(fd_); }
+FileLock::~FileLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
 
 }  // namespace granjet::analysis

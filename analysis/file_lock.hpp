@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 namespace granjet::analysis {
 
@@ -22,6 +23,8 @@ class FileLock {
   explicit FileLock(const std::filesystem::path& path);
   FileLock(const FileLock&) = delete;
   FileLock& operator=(const FileLock&) = delete;
+  // The lock goes with the open file, so it survives a rename of the file it is on.
+  FileLock(FileLock&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
   ~FileLock();
 
  private:

@@ -13,6 +13,7 @@
 
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
+#include "analysis/hdf5_copy.hpp"
 #include "analysis/hdf5_handle.hpp"
 #include "analysis/xdmf_sidecar.hpp"
 #include "core/plate_face.hpp"
@@ -82,6 +83,7 @@ class H5mdFile {
   std::filesystem::path abandon(const std::string& reason);
 
  private:
+  void drop_checkpoints();
   // An extendable dataset; extent is its current shape [rows, row shape...].
   struct Dataset {
     H5Handle handle;
@@ -530,13 +532,13 @@ void H5mdFile::write_observables(std::int64_t step, double time, const Observabl
 
 std::filesystem::path H5mdFile::complete() {
   require_open();
-  // A complete run resumes nothing; its checkpoint (with its wall time) would only take room.
-  for (const char* checkpoint : {"/checkpoint", "/checkpoint.new"})
-    if (H5Lexists(file_.get(), checkpoint, H5P_DEFAULT) > 0)
-      ctx_.check(H5Ldelete(file_.get(), checkpoint, H5P_DEFAULT), "remove", checkpoint);
+  // A complete run resumes nothing: its checkpoint goes, and with it the space it took.
+  const bool checkpointed = H5Lexists(file_.get(), "/checkpoint", H5P_DEFAULT) > 0 ||
+                            H5Lexists(file_.get(), "/checkpoint.new", H5P_DEFAULT) > 0;
   write_string_attribute("/parameters/granjet", "status", "complete");
   const XdmfLayout sidecar = layout();
   close();
+  if (checkpointed) drop_checkpoints();
   // An ensemble file holds no frames: nothing to draw, and a sidecar of frames that an earlier
   // file of this name held would show what is gone.
   if (frames_.empty())
@@ -544,6 +546,31 @@ std::filesystem::path H5mdFile::complete() {
   else
     write_xdmf_sidecar(xdmf_path_for(path_), path_.filename().string(), sidecar, frames_);
   return ctx_.file();
+}
+
+// HDF5 does not give back the space of deleted objects, and the last checkpoint is as big as a
+// frame with the contact histories: the file is copied without it (hdf5_copy.hpp), under the
+// same lock. Where that fails (a disk too full for the copy) the file stays as it is, complete
+// but larger, its checkpoint deleted in place.
+void H5mdFile::drop_checkpoints() {
+  std::filesystem::path compact = ctx_.file();
+  compact += ".compact";
+  try {
+    FileLock held(compact);
+    copy_hdf5_except(ctx_.file(), compact, {"checkpoint", "checkpoint.new"});
+    std::filesystem::rename(compact, ctx_.file());
+    lock_.reset();
+    lock_.emplace(std::move(held));
+  } catch (const std::exception&) {
+    std::error_code ignored;
+    std::filesystem::remove(compact, ignored);
+    file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
+                     "the file");
+    for (const char* checkpoint : {"/checkpoint", "/checkpoint.new"})
+      if (H5Lexists(file_.get(), checkpoint, H5P_DEFAULT) > 0)
+        ctx_.check(H5Ldelete(file_.get(), checkpoint, H5P_DEFAULT), "remove", checkpoint);
+    close();
+  }
 }
 
 void H5mdFile::publish() {

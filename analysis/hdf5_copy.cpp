@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <map>
 #include <vector>
@@ -43,9 +44,35 @@ class Copier {
     H5O_info_t object;
     in_.check(H5Oget_info_by_name(from_, path.c_str(), &object, H5P_DEFAULT), "read", path);
     if (object.type == H5O_TYPE_GROUP) return group(path);
-    // A dataset (or named type) with its attributes, in one call.
+    // A dataset (or named type) with its attributes, in one call; references among them are
+    // made again at the end.
     in_.check(H5Ocopy(from_, path.c_str(), to_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT), "copy",
               path);
+    const H5Handle copied =
+        in_.own(H5Oopen(from_, path.c_str(), H5P_DEFAULT), H5Oclose, "open", path);
+    note_references(copied.get(), path);
+  }
+
+  // An object reference points to an address in its file: each is made again in the copy, to
+  // the object of the same path, once every object is there (H5MD's connectivity names its
+  // particles group by one).
+  void make_references() {
+    for (const Reference& r : references_) {
+      std::vector<hobj_ref_t> refs(r.targets.size());
+      for (std::size_t k = 0; k < refs.size(); ++k)
+        out_.check(H5Rcreate(&refs[k], to_, r.targets[k].c_str(), H5R_OBJECT, -1), "refer to",
+                   r.targets[k]);
+      const std::string what = r.object + " attribute " + r.name;
+      if (H5Aexists_by_name(to_, r.object.c_str(), r.name.c_str(), H5P_DEFAULT) > 0)
+        out_.check(H5Adelete_by_name(to_, r.object.c_str(), r.name.c_str(), H5P_DEFAULT), "replace",
+                   what);
+      const H5Handle space = out_.dataspace(r.shape);
+      const H5Handle a =
+          out_.own(H5Acreate_by_name(to_, r.object.c_str(), r.name.c_str(), H5T_STD_REF_OBJ,
+                                     space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                   H5Aclose, "create", what);
+      out_.check(H5Awrite(a.get(), H5T_STD_REF_OBJ, refs.data()), "write", what);
+    }
   }
 
  private:
@@ -67,34 +94,82 @@ class Copier {
     for (const std::string& name : link_names(in_, source.get(), path)) link(path + "/" + name);
   }
 
+  // One attribute of an object in the source, open with its type and shape.
+  struct Attribute {
+    std::string name;
+    H5Handle handle, type, space;
+    std::size_t count = 0;
+  };
+  template <class Visit>
+  void each_attribute(hid_t object, const std::string& path, const Visit& visit) const {
+    H5O_info_t info;
+    in_.check(H5Oget_info(object, &info), "read", path);
+    for (hsize_t k = 0; k < info.num_attrs; ++k) {
+      const std::string what = path + " attribute " + std::to_string(k);
+      Attribute a;
+      a.handle = in_.own(
+          H5Aopen_by_idx(object, ".", H5_INDEX_NAME, H5_ITER_INC, k, H5P_DEFAULT, H5P_DEFAULT),
+          H5Aclose, "open", what);
+      a.type = in_.own(H5Aget_type(a.handle.get()), H5Tclose, "read the type of", what);
+      a.space = in_.own(H5Aget_space(a.handle.get()), H5Sclose, "read the shape of", what);
+      const hssize_t count = H5Sget_simple_extent_npoints(a.space.get());
+      const ssize_t length = H5Aget_name(a.handle.get(), 0, nullptr);
+      if (count < 0 || length < 0 || H5Tget_size(a.type.get()) == 0) in_.fail("read", what);
+      a.count = static_cast<std::size_t>(count);
+      std::vector<char> name(static_cast<std::size_t>(length) + 1);
+      H5Aget_name(a.handle.get(), name.size(), name.data());
+      a.name = name.data();
+      visit(a);
+    }
+  }
+
   // H5Ocopy copies a dataset's attributes along; a group made afresh gets them here.
   void attributes(hid_t source, hid_t copy, const std::string& path) {
-    H5O_info_t object;
-    in_.check(H5Oget_info(source, &object), "read", path);
-    for (hsize_t k = 0; k < object.num_attrs; ++k) {
-      const std::string what = path + " attribute " + std::to_string(k);
-      const H5Handle a = in_.own(
-          H5Aopen_by_idx(source, ".", H5_INDEX_NAME, H5_ITER_INC, k, H5P_DEFAULT, H5P_DEFAULT),
-          H5Aclose, "open", what);
-      const H5Handle type = in_.own(H5Aget_type(a.get()), H5Tclose, "read the type of", what);
-      const H5Handle space = in_.own(H5Aget_space(a.get()), H5Sclose, "read the shape of", what);
-      const hssize_t count = H5Sget_simple_extent_npoints(space.get());
-      const std::size_t size = H5Tget_size(type.get());
-      if (count < 0 || size == 0) in_.fail("read", what);
-      std::vector<std::byte> value(static_cast<std::size_t>(count) * size);
-      in_.check(H5Aread(a.get(), type.get(), value.data()), "read", what);
+    note_references(source, path);
+    each_attribute(source, path, [&](const Attribute& a) {
+      if (H5Tget_class(a.type.get()) == H5T_REFERENCE) return;
+      const std::string what = path + " attribute " + a.name;
+      std::vector<std::byte> value(a.count * H5Tget_size(a.type.get()));
+      in_.check(H5Aread(a.handle.get(), a.type.get(), value.data()), "read", what);
       // Variable-length values are copied as the library's own allocations, freed after.
       const bool variable =
-          H5Tdetect_class(type.get(), H5T_VLEN) > 0 || H5Tis_variable_str(type.get()) > 0;
-      std::vector<char> name(static_cast<std::size_t>(H5Aget_name(a.get(), 0, nullptr)) + 1);
-      H5Aget_name(a.get(), name.size(), name.data());
-      const H5Handle b =
-          out_.own(H5Acreate2(copy, name.data(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                   H5Aclose, "create", path + " attribute " + name.data());
-      const herr_t written = H5Awrite(b.get(), type.get(), value.data());
-      if (variable) H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, value.data());
-      out_.check(written, "write", path + " attribute " + name.data());
-    }
+          H5Tdetect_class(a.type.get(), H5T_VLEN) > 0 || H5Tis_variable_str(a.type.get()) > 0;
+      const H5Handle b = out_.own(
+          H5Acreate2(copy, a.name.c_str(), a.type.get(), a.space.get(), H5P_DEFAULT, H5P_DEFAULT),
+          H5Aclose, "create", what);
+      const herr_t written = H5Awrite(b.get(), a.type.get(), value.data());
+      if (variable) H5Dvlen_reclaim(a.type.get(), a.space.get(), H5P_DEFAULT, value.data());
+      out_.check(written, "write", what);
+    });
+  }
+
+  struct Reference {
+    std::string object, name;
+    std::vector<hsize_t> shape;
+    std::vector<std::string> targets;  // paths in the source, the same in the copy
+  };
+
+  // The object references among the attributes of `object`, by the paths they point to.
+  void note_references(hid_t object, const std::string& path) {
+    each_attribute(object, path, [&](const Attribute& a) {
+      if (H5Tget_class(a.type.get()) != H5T_REFERENCE) return;
+      const std::string what = path + " attribute " + a.name;
+      if (H5Tequal(a.type.get(), H5T_STD_REF_OBJ) <= 0) in_.fail("copy the region reference", what);
+      std::vector<hobj_ref_t> refs(a.count);
+      in_.check(H5Aread(a.handle.get(), H5T_STD_REF_OBJ, refs.data()), "read", what);
+      Reference r{path, a.name, {}, {}};
+      const int rank = H5Sget_simple_extent_ndims(a.space.get());
+      r.shape.resize(static_cast<std::size_t>(std::max(rank, 0)));
+      if (rank > 0) H5Sget_simple_extent_dims(a.space.get(), r.shape.data(), nullptr);
+      for (hobj_ref_t& ref : refs) {
+        const ssize_t length = H5Rget_name(from_, H5R_OBJECT, &ref, nullptr, 0);
+        if (length <= 0) in_.fail("follow", what);
+        std::vector<char> target(static_cast<std::size_t>(length) + 1);
+        H5Rget_name(from_, H5R_OBJECT, &ref, target.data(), target.size());
+        r.targets.emplace_back(target.data());
+      }
+      references_.push_back(std::move(r));
+    });
   }
 
   const H5Context& in_;
@@ -102,6 +177,7 @@ class Copier {
   hid_t from_;
   hid_t to_;
   std::map<haddr_t, std::string> copied_;  // object address in `source` -> its first path
+  std::vector<Reference> references_;
 };
 
 }  // namespace
@@ -116,6 +192,7 @@ void copy_hdf5_except(const std::filesystem::path& source, const std::filesystem
   Copier copier(in, out, from.get(), to.get());
   for (const std::string& name : link_names(in, from.get(), "/"))
     if (!left_out.contains(name)) copier.link("/" + name);
+  copier.make_references();
   out.check(to.reset(), "close", "the file");
 }
 

@@ -1,6 +1,7 @@
-// copy_hdf5_except: what a re-analysis keeps of a run's file. Everything but the left-out
-// groups, with attributes of every kind, hard links (in a group and across groups) still one
-// object, soft links still soft; the left-out groups never opened.
+// copy_hdf5_except: what a re-analysis and a complete run's repack keep of a file. Everything
+// but the left-out groups, with attributes of every kind (object references made again in the
+// copy), hard links (in a group and across groups) still one object, soft links still soft; the
+// left-out groups never opened.
 #include "analysis/hdf5_copy.hpp"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,16 @@ void write_source(const fs::path& file) {
   H5Lcreate_hard(f, "/observables/a/time", f, "/observables/b/time", H5P_DEFAULT, H5P_DEFAULT);
   H5Lcreate_hard(f, "/observables/a/time", f, "/particles/step", H5P_DEFAULT, H5P_DEFAULT);
   H5Lcreate_soft("/observables/a", f, "/particles/soft", H5P_DEFAULT, H5P_DEFAULT);
+  // An object reference, as H5MD's connectivity names its particles group: on a group copied
+  // before the object it points to.
+  hobj_ref_t ref;
+  H5Rcreate(&ref, f, "/particles", H5R_OBJECT, -1);
+  const hid_t scalar = H5Screate(H5S_SCALAR);
+  const hid_t attribute = H5Acreate_by_name(f, "/observables/a", "particles_group", H5T_STD_REF_OBJ,
+                                            scalar, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attribute, H5T_STD_REF_OBJ, &ref);
+  H5Aclose(attribute);
+  H5Sclose(scalar);
   for (const char* left_out : {"/fields", "/analysis"})
     H5Lcreate_external("missing.h5", "/", f, left_out, H5P_DEFAULT, H5P_DEFAULT);
   H5Fclose(f);
@@ -133,6 +144,17 @@ TEST(Hdf5Copy, KeepsAttributesAndLinksAndNeverOpensTheLeftOutGroups) {
   ASSERT_GE(H5Lget_info(f, "/particles/soft", &soft, H5P_DEFAULT), 0);
   EXPECT_EQ(soft.type, H5L_TYPE_SOFT);
   EXPECT_EQ(address(f, "/particles/soft"), address(f, "/observables/a"));
+  // The reference points to the copy's /particles, not to an address of the source.
+  hobj_ref_t ref;
+  const hid_t a = H5Aopen_by_name(f, "/observables/a", "particles_group", H5P_DEFAULT, H5P_DEFAULT);
+  H5Aread(a, H5T_STD_REF_OBJ, &ref);
+  H5Aclose(a);
+  const hid_t target = H5Rdereference2(f, H5P_DEFAULT, H5R_OBJECT, &ref);
+  ASSERT_GE(target, 0);
+  char name[64] = {};
+  H5Iget_name(target, name, sizeof name);
+  H5Oclose(target);
+  EXPECT_STREQ(name, "/particles");
   H5Fclose(f);
 
   // Followed, an external link fails, and a copy that keeps it names it and the source.
