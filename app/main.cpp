@@ -9,13 +9,14 @@
 #include "app/campaign_command.hpp"
 #include "app/compare_command.hpp"
 #include "app/info_command.hpp"
-#include "run/run_command.hpp"
-#include "run/version.hpp"
+#include "campaign/child_process.hpp"
 #include "core/errors.hpp"
 #include "run/backend_factory.hpp"
 #include "run/failure_report.hpp"
+#include "run/run_command.hpp"
 #include "run/scene_file.hpp"
 #include "run/seed_list.hpp"
+#include "run/version.hpp"
 
 namespace po = boost::program_options;
 
@@ -24,9 +25,9 @@ namespace {
 constexpr const char* kUsage = R"(usage:
   granjet run SCENE.ini [--backend NAME] [--set section.key=value ...] [--out run.h5]
               [--summary run.json] [--seeds 1..10 | 1,4,7] [--author NAME] [--quiet]
-              [--no-log] [--profile]
+              [--no-log] [--profile] [--no-signal-checkpoint]
   granjet resume RUN.h5.partial [--set run.t_end=T] [--summary run.json] [--quiet] [--no-log]
-              [--profile]
+              [--profile] [--no-signal-checkpoint]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
               [--quiet]            (mpirun -n K granjet campaign ... spreads it over K ranks)
@@ -51,11 +52,15 @@ run options:
   --profile         the loop's wall time per phase (neighbour rebuilds, contacts, grain
                     update, observers ...) and the share of it that ran serially, at the
                     end and in the summary: why a run does or does not scale with run.threads
+  --no-signal-checkpoint  on SIGINT/SIGTERM/SIGHUP keep the last scheduled checkpoint
+                    instead of writing one: the resumed run is then bit-identical to one never
+                    stopped (campaigns run their runs so)
 resume options (a run's .partial goes on from its last checkpoint, run.checkpoint_interval):
   --set KEY=VALUE   only run.t_end (to extend the run), run.threads, run.progress_interval
   --summary FILE    the JSON summary of the whole run (as run --summary)
   --no-log          do not append to the run's .log
   --profile         as for run
+  --no-signal-checkpoint  as for run
 compare options (every backend on one scene):
   --out DIR         DIR/BACKEND.h5 and DIR/BACKEND.json per backend, and DIR/compare.json
                     with the summaries side by side (also printed as a table)
@@ -130,11 +135,12 @@ int run(const std::vector<std::string>& args) {
       "backend", po::value(&o.backend))("set", po::value(&o.overrides)->composing())(
       "out", po::value<std::string>())("summary", po::value<std::string>())(
       "seeds", po::value<std::string>())("quiet", po::bool_switch(&o.quiet))(
-      "no-log", po::bool_switch())("author", po::value(&o.author))("profile",
-                                                                   po::bool_switch(&o.profile));
+      "no-log", po::bool_switch())("author", po::value(&o.author))(
+      "profile", po::bool_switch(&o.profile))("no-signal-checkpoint", po::bool_switch());
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
   o.log = !vm["no-log"].as<bool>();
+  o.checkpoint_on_signal = !vm["no-signal-checkpoint"].as<bool>();
   if (vm.count("seeds")) o.seeds = granjet::parse_seeds(vm["seeds"].as<std::string>(), "--seeds");
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
@@ -146,11 +152,12 @@ int resume(const std::vector<std::string>& args) {
   po::options_description desc;
   desc.add_options()("file", po::value<std::string>()->required())(
       "set", po::value(&o.overrides)->composing())("summary", po::value<std::string>())(
-      "quiet", po::bool_switch(&o.quiet))("no-log", po::bool_switch())("profile",
-                                                                       po::bool_switch(&o.profile));
+      "quiet", po::bool_switch(&o.quiet))("no-log", po::bool_switch())(
+      "profile", po::bool_switch(&o.profile))("no-signal-checkpoint", po::bool_switch());
   const po::variables_map vm = parse(args, desc, "file");
   o.partial = vm["file"].as<std::string>();
   o.log = !vm["no-log"].as<bool>();
+  o.checkpoint_on_signal = !vm["no-signal-checkpoint"].as<bool>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   return granjet::resume_command(o, std::cout);
 }
@@ -219,6 +226,7 @@ int info(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  granjet::end_with_parent();
   const std::vector<std::string> all(argv + 1, argv + argc);
   if (all.empty()) {
     std::cerr << kUsage;

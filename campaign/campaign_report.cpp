@@ -65,6 +65,8 @@ const char* state_name(RunState state) {
       return "blown_up";
     case RunState::kFailed:
       return "failed";
+    case RunState::kInterrupted:
+      return "interrupted";
   }
   return "?";
 }
@@ -130,34 +132,38 @@ void print_dry_run(const CampaignFile& campaign, const CampaignPlan& plan, int j
 
 void print_outcome_table(const CampaignPlan& plan, const std::vector<RunOutcome>& outcomes,
                          double wall_seconds, std::ostream& out) {
+  // "to do": interrupted, or never started (an interrupted invocation); the next one runs them.
   out << "\n"
-      << printf_string("%-50s %8s %8s %8s %7s %10s\n", "ensemble", "complete", "blown_up", "failed",
-                       "reused", "run s");
-  std::size_t complete = 0, blown_up = 0, failed = 0, reused = 0;
+      << printf_string("%-50s %8s %8s %8s %7s %7s %10s\n", "ensemble", "complete", "blown_up",
+                       "failed", "to do", "reused", "run s");
+  std::size_t complete = 0, blown_up = 0, failed = 0, to_do = 0, reused = 0, executed = 0;
   double run_seconds = 0.0;
   for (const PlannedEnsemble& e : plan.ensembles) {
-    std::size_t c = 0, b = 0, f = 0, u = 0;
+    std::size_t c = 0, b = 0, f = 0, t = 0, u = 0;
     double s = 0.0;
     for (std::size_t r : e.runs) {
       const RunOutcome& o = outcomes[r];
       c += o.state == RunState::kComplete;
       b += o.state == RunState::kBlownUp;
-      f += o.state == RunState::kFailed || o.state == RunState::kMissing;
-      u += !o.executed;
+      f += o.state == RunState::kFailed;
+      t += o.state == RunState::kInterrupted || o.state == RunState::kMissing;
+      u += !o.executed && o.state != RunState::kMissing;
+      executed += o.executed;
       s += o.seconds;
     }
-    out << printf_string("%-50s %4zu/%-3zu %8zu %8zu %7zu %10.1f\n", e.name.c_str(), c,
-                         e.runs.size(), b, f, u, s);
+    out << printf_string("%-50s %4zu/%-3zu %8zu %8zu %7zu %7zu %10.1f\n", e.name.c_str(), c,
+                         e.runs.size(), b, f, t, u, s);
     complete += c;
     blown_up += b;
     failed += f;
+    to_do += t;
     reused += u;
     run_seconds += s;
   }
-  out << printf_string("%-50s %4zu/%-3zu %8zu %8zu %7zu %10.1f\n", "total", complete,
-                       plan.runs.size(), blown_up, failed, reused, run_seconds)
-      << "wall time " << format_duration(wall_seconds) << " for " << plan.runs.size() - reused
-      << " runs executed (" << reused << " found complete and reused)\n";
+  out << printf_string("%-50s %4zu/%-3zu %8zu %8zu %7zu %7zu %10.1f\n", "total", complete,
+                       plan.runs.size(), blown_up, failed, to_do, reused, run_seconds)
+      << "wall time " << format_duration(wall_seconds) << " for " << executed << " runs executed ("
+      << reused << " found done and reused)\n";
 }
 
 }  // namespace granjet

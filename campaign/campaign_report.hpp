@@ -12,7 +12,7 @@
 namespace granjet {
 
 // What a run's files, or its exit code, say about it.
-enum class RunState { kMissing, kComplete, kBlownUp, kFailed };
+enum class RunState { kMissing, kComplete, kBlownUp, kFailed, kInterrupted };
 const char* state_name(RunState state);
 
 struct RunOutcome {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <deque>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "campaign/campaign_manifest.hpp"
 #include "run/backend_factory.hpp"
 #include "run/ensemble_output.hpp"
+#include "run/interrupts.hpp"
 #include "run/scene_file.hpp"
 
 namespace granjet {
@@ -49,6 +51,8 @@ bool holds_run(const std::filesystem::path& file, const PlannedRun& run) {
 }
 
 RunState state_of_exit(int code) {
+  if (code == 128 + SIGINT || code == 128 + SIGTERM || code == 128 + SIGHUP)
+    return RunState::kInterrupted;
   return code == 0 ? RunState::kComplete : code == 3 ? RunState::kBlownUp : RunState::kFailed;
 }
 
@@ -76,9 +80,18 @@ class Coordinator {
     for (std::size_t e = 0; e < plan_.ensembles.size(); ++e) merge_if_settled(e);
     std::vector<std::optional<std::pair<std::size_t, ChildProcess>>> slots(options_.jobs);
     int workers = world_.size() - 1;  // ranks not yet told to stop
+    const Interrupts interrupts;
     while (!queue_.empty() || workers > 0 ||
            std::any_of(slots.begin(), slots.end(), [](const auto& s) { return s.has_value(); })) {
       bool busy = false;
+      // A signal: no run starts any more, and the running ones stop (once) at their last
+      // scheduled checkpoint, from which the next invocation resumes them.
+      if (interrupts.signal() != 0 && !interrupted_) {
+        interrupted_ = interrupts.signal();
+        queue_.clear();
+        for (auto& slot : slots)
+          if (slot) slot->second.signal(interrupted_);
+      }
       for (auto& slot : slots) {
         if (slot) {
           if (const auto code = slot->second.poll()) {
@@ -297,6 +310,11 @@ class Coordinator {
     inv["wall_seconds"] = wall;
     manifest_.save();
     print_outcome_table(plan_, outcomes_, wall, out_);
+    if (interrupted_ != 0) {
+      out_ << "interrupted (signal " << interrupted_ << "): `granjet campaign` again resumes "
+           << "the interrupted runs from their checkpoints\n";
+      return 128 + interrupted_;
+    }
     return failed > 0 ? 1 : blown_up > 0 ? 3 : 0;
   }
 
@@ -313,6 +331,7 @@ class Coordinator {
   std::chrono::steady_clock::time_point start_;
   std::size_t found_ = 0, executed_ = 0;
   double to_do_seconds_ = 0.0, done_seconds_ = 0.0;
+  int interrupted_ = 0;  // the signal that stopped this invocation
 };
 
 }  // namespace
@@ -327,8 +346,25 @@ RunState stored_state(const PlannedRun& run) {
   return RunState::kMissing;
 }
 
+// Whether the run's .partial holds a checkpoint of this very run: a run interrupted (or killed)
+// after it goes on from there.
+bool resumable(const PlannedRun& run) {
+  if (!holds_run(run.file(".h5.partial"), run)) return false;
+  try {
+    return analysis::read_summary(run.file(".h5.partial")).checkpoint;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 ChildProcess start_run(const PlannedRun& run) {
   std::filesystem::create_directories(run.base.parent_path());
+  // Signals leave the last scheduled checkpoint, so a resumed run is bit-identical to a run
+  // never stopped.
+  if (resumable(run))
+    return ChildProcess({"resume", run.file(".h5.partial").string(), "--summary",
+                         run.file(".json").string(), "--no-log", "--no-signal-checkpoint"},
+                        run.file(".log"));
   for (const char* stale : {".h5", ".h5.partial", ".json", ".xmf", ".fields.xmf"})
     std::filesystem::remove(run.file(stale));
   {
@@ -341,10 +377,10 @@ ChildProcess start_run(const PlannedRun& run) {
   std::ofstream(run.file(".log"), std::ios::trunc);
   // The child's stdout and stderr are its log: its own would be the same rows (the resolved
   // scene and the summary are the .ini and the .json).
-  return ChildProcess(
-      {"run", run.file(".ini").string(), "--backend", run.backend, "--out",
-       run.file(".h5").string(), "--summary", run.file(".json").string(), "--no-log"},
-      run.file(".log"));
+  return ChildProcess({"run", run.file(".ini").string(), "--backend", run.backend, "--out",
+                       run.file(".h5").string(), "--summary", run.file(".json").string(),
+                       "--no-log", "--no-signal-checkpoint"},
+                      run.file(".log"));
 }
 
 int coordinate_campaign(const CampaignFile& campaign, const CampaignPlan& plan, MpiWorld& world,
@@ -355,10 +391,20 @@ int coordinate_campaign(const CampaignFile& campaign, const CampaignPlan& plan, 
 void work_for_campaign(const CampaignPlan& plan, MpiWorld& world) {
   world.hostnames();  // the collective call rank 0 makes in its coordinator
   MpiWorld::Report report;
+  const Interrupts interrupts;  // passed on to the run, which stops at its last checkpoint
   for (std::int64_t r; (r = world.report_and_receive(report)) >= 0;) {
     ChildProcess child = start_run(plan.runs.at(static_cast<std::size_t>(r)));
+    bool passed_on = false;
+    std::optional<int> code;
+    while (!(code = child.poll())) {
+      if (interrupts.signal() != 0 && !passed_on) {
+        child.signal(interrupts.signal());
+        passed_on = true;
+      }
+      std::this_thread::sleep_for(kPoll);
+    }
     report.run = r;
-    report.exit_code = child.wait();
+    report.exit_code = *code;
     report.seconds = child.seconds();
   }
 }

@@ -2,19 +2,29 @@
 
 #include <fcntl.h>
 #include <sched.h>
+#include <signal.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 
 extern char** environ;
 
 namespace granjet {
+namespace {
+
+// Names the parent a child is to end with (its process id).
+constexpr const char* kParentVariable = "GRANJET_END_WITH_PARENT";
+
+}  // namespace
 
 ChildProcess::ChildProcess(const std::vector<std::string>& args, const std::filesystem::path& log)
     : start_(std::chrono::steady_clock::now()) {
@@ -26,12 +36,24 @@ ChildProcess::ChildProcess(const std::vector<std::string>& args, const std::file
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
 
+  // The environment, with this process named as the parent to end with.
+  const std::string parent = std::string(kParentVariable) + "=" + std::to_string(getpid());
+  std::vector<char*> env{const_cast<char*>(parent.c_str())};
+  for (char** e = environ; *e != nullptr; ++e)
+    if (std::string_view(*e).rfind(kParentVariable, 0) != 0) env.push_back(*e);
+  env.push_back(nullptr);
+
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  const int error = posix_spawn(&pid_, self, &actions, nullptr, argv.data(), environ);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);  // a group of its own
+  const int error = posix_spawn(&pid_, self, &actions, &attributes, argv.data(), env.data());
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0)
     throw std::runtime_error("cannot start " + program + " (log " + log.string() +
@@ -70,6 +92,18 @@ int ChildProcess::wait() { return *reap(0); }
 double ChildProcess::seconds() const {
   const auto end = code_ ? end_ : std::chrono::steady_clock::now();
   return std::chrono::duration<double>(end - start_).count();
+}
+
+void ChildProcess::signal(int signal) {
+  if (pid_ > 0 && !code_) ::kill(pid_, signal);
+}
+
+void end_with_parent() {
+  const char* parent = std::getenv(kParentVariable);
+  if (parent == nullptr) return;
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // The parent may have died before the line above: then the child is an orphan already.
+  if (std::to_string(getppid()) != parent) _exit(128 + SIGKILL);
 }
 
 int available_cores() {

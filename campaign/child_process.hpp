@@ -16,7 +16,10 @@ namespace granjet {
 class ChildProcess {
  public:
   // Starts this very binary (/proc/self/exe) with `args`, stdin from /dev/null and stdout and
-  // stderr appended to `log`. Throws std::runtime_error naming the log or the program on failure.
+  // stderr appended to `log`, in a process group of its own: a Ctrl-C at the terminal reaches
+  // the parent alone, which passes it on once (a second signal would stop the child at once).
+  // The child dies with the parent (end_with_parent). Throws std::runtime_error naming the log
+  // or the program on failure.
   ChildProcess(const std::vector<std::string>& args, const std::filesystem::path& log);
   ChildProcess(ChildProcess&& other) noexcept;
   ChildProcess& operator=(ChildProcess&&) = delete;
@@ -30,6 +33,8 @@ class ChildProcess {
   int wait();
   // Wall time from the start to the end (or to now while it runs).
   double seconds() const;
+  // Sends `signal` to the child while it runs.
+  void signal(int signal);
 
  private:
   std::optional<int> reap(int options);
@@ -41,5 +46,10 @@ class ChildProcess {
 
 // The cores this process may run on (its CPU affinity).
 int available_cores();
+
+// Called first thing by the granjet command: a process started as a ChildProcess is killed
+// when its parent dies (kill -9 of a campaign, a node that vanishes), as it would be in the
+// parent's process group.
+void end_with_parent();
 
 }  // namespace granjet

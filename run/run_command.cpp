@@ -184,7 +184,8 @@ using Say = std::function<void(const std::string&)>;
 template <int D>
 std::string observe_to_end(Simulator<D>& sim, const Scene& scene, const RunObservers<D>& observers,
                            FrameOutput<D>& frames, analysis::H5mdWriter<D>& writer,
-                           const Interrupts& interrupts, const Say& say) {
+                           const Interrupts& interrupts, bool checkpoint_on_signal,
+                           const Say& say) {
   try {
     observe_until(sim, scene.run.t_end, 0.5 * scene.dt(), observers, interrupts);
   } catch (const BlowUpError& e) {
@@ -197,12 +198,13 @@ std::string observe_to_end(Simulator<D>& sim, const Scene& scene, const RunObser
     frames.finish(sim);
     return "complete";
   }
-  write_checkpoint(sim, observers, writer);
+  if (checkpoint_on_signal) write_checkpoint(sim, observers, writer);
   const std::filesystem::path kept = writer.abandon("interrupted");
   std::ostringstream text;
   text << "interrupted (signal " << interrupts.signal() << ") at t = " << sim.time()
        << "; the run is kept in " << kept.string() << "; go on with: granjet resume "
        << kept.string();
+  if (!checkpoint_on_signal) text << " (from its last scheduled checkpoint, if any)";
   say(text.str());
   return "interrupted";
 }
@@ -257,8 +259,8 @@ RunOutcome run_simulation(Simulator<D>& sim, const Scene& requested, const Scene
   sim.stop_when(&interrupts.stop_flag());
   if (options.profile) sim.profile().enable();
   const auto loop_start = std::chrono::steady_clock::now();
-  const std::string status =
-      observe_to_end(sim, scene, observers, frames, *writer, interrupts, say);
+  const std::string status = observe_to_end(sim, scene, observers, frames, *writer, interrupts,
+                                            options.checkpoint_on_signal, say);
   sim.stop_when(nullptr);  // the flag goes with `interrupts`; the simulator may live on
   const double loop_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
@@ -382,6 +384,7 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   run.quiet = options.quiet;
   run.log = options.log;
   run.profile = options.profile;
+  run.checkpoint_on_signal = options.checkpoint_on_signal;
   const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
   std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
   std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });

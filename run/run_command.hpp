@@ -29,6 +29,10 @@ struct RunOptions {
   bool profile = false;
   // The H5MD author (/h5md/author/name); empty: $GRANJET_AUTHOR, else the login name.
   std::string author;
+  // What SIGINT, SIGTERM or SIGHUP leave: a checkpoint at the stop (true), or the last
+  // scheduled one (false), from which the resumed run is bit-identical to one never stopped (a
+  // checkpoint rebuilds the neighbour list, so an unscheduled one changes the last bits).
+  bool checkpoint_on_signal = true;
   // An ensemble: one run per seed (run.seed), each to <out stem>.seed<N>.h5 (and
   // <summary stem>.seed<N>.json); the mean and spread over seeds of the analysis go to `out`
   // and `summary`. Empty: one run with the scene's seed.
@@ -59,8 +63,9 @@ struct ResumeOptions {
   std::vector<std::string> overrides;  // only the keys kResumableKeys names
   std::filesystem::path summary;       // empty: no JSON summary
   bool quiet = false;
-  bool log = true;       // appends to the run's log
-  bool profile = false;  // as RunOptions::profile
+  bool log = true;                   // appends to the run's log
+  bool profile = false;              // as RunOptions::profile
+  bool checkpoint_on_signal = true;  // as RunOptions::checkpoint_on_signal
 };
 
 // `granjet resume`: the run of a .partial goes on from its last checkpoint, bit-identically to

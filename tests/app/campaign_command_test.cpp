@@ -7,12 +7,15 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <thread>
 #include <tuple>
 
 #include "analysis/field_reader.hpp"
+#include "analysis/h5md_reader.hpp"
 #include "command_fixture.hpp"
 
 namespace granjet::testing {
@@ -143,6 +146,68 @@ TEST_F(CampaignCommand, KilledCampaignRerunFinishesOnlyTheRestWithTheSameFiles) 
   EXPECT_EQ(m["invocations"][1]["found_complete"].get<std::size_t>(), done_before);
   EXPECT_EQ(m["invocations"][1]["executed"].get<std::size_t>(), 10u - done_before);
   expect_same_files(killed, straight);
+}
+
+// Ctrl-C (SIGINT to the campaign alone: its runs have process groups of their own): no run
+// starts any more, the running one stops at its last scheduled checkpoint and is recorded as
+// interrupted, the campaign exits 130; run again, it resumes that run from its checkpoint, and
+// every file is the one a campaign never stopped writes.
+TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
+  const fs::path file = smoke_copy("jet.grains = 300\njet.diameter = 4\nwall.diameter = 8",
+                                   "jet.grains = 4000\njet.diameter = 16\nwall.diameter = 36\n"
+                                   "run.checkpoint_interval = 1");
+  const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
+  std::string text;
+  {
+    std::ifstream in(file);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text.replace(text.find("region.radius = 16"), 18, "region.radius = 72");
+  text.replace(text.find("run.t_end = 10"), 14, "run.t_end = 40");
+  std::ofstream(file) << text;
+  const fs::path straight = dir_ / "straight", stopped = dir_ / "stopped";
+  ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
+
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string out = stopped.string(), campaign = file.string();
+    execl(GRANJET_BINARY, GRANJET_BINARY, "campaign", campaign.c_str(), "--quiet", "--jobs", "1",
+          "--only", "F5.3", "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path partial = stopped / "jet3d" / "jet3d.seed1.h5.partial";
+  bool sent = false;
+  for (int tries = 0; tries < 6000 && !sent; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    try {
+      const analysis::FileSummary s = analysis::read_summary(partial);
+      if (s.checkpoint && s.checkpoint_time >= 3.0) sent = kill(pid, SIGINT) == 0;
+    } catch (const std::exception&) {  // not written yet
+    }
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(sent) << "the run ended before its campaign could be interrupted";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  nlohmann::json m = manifest(stopped);
+  EXPECT_EQ(m["runs"]["jet3d/jet3d.seed1"]["status"], "interrupted");
+  EXPECT_NE(m["runs"]["jet3d/jet3d.seed2"]["status"], "complete");  // never started
+  EXPECT_TRUE(analysis::read_summary(partial).checkpoint);
+
+  ASSERT_EQ(granjet("campaign " + file.string() + only + stopped.string()), 0) << err_;
+  m = manifest(stopped);
+  EXPECT_EQ(m["runs"]["jet3d/jet3d.seed1"]["status"], "complete");
+  std::ifstream log(stopped / "jet3d" / "jet3d.seed1.log");
+  const std::string logged{std::istreambuf_iterator<char>(log), {}};
+  EXPECT_NE(logged.find("continuing "), std::string::npos) << "resumed, not run again";
+  for (const char* f : {"jet3d.seed1.h5", "jet3d.seed2.h5", "jet3d.h5"}) {
+    const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " +
+                            (straight / "jet3d" / f).string() + " " +
+                            (stopped / "jet3d" / f).string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << f;
+  }
 }
 
 TEST_F(CampaignCommand, OneJobTwoJobsAndTwoMpiRanksGiveTheSameFiles) {
