@@ -12,6 +12,7 @@
 
 #include "analysis/h5md_writer.hpp"
 #include "core/plate_face.hpp"
+#include "../common/hdf5_text.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -78,20 +79,9 @@ class H5File {
     H5Dclose(set);
     return out;
   }
-  // A variable-length string attribute (the unit attributes).
+  // A string attribute (the unit attributes are variable-length).
   std::string text_attribute(const std::string& object, const char* name) const {
-    const hid_t a = H5Aopen_by_name(id_, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
-    const hid_t type = H5Aget_type(a);
-    std::string value;
-    if (H5Tis_variable_str(type) > 0) {
-      char* text = nullptr;
-      H5Aread(a, type, &text);
-      value = text;
-      H5free_memory(text);
-    }
-    H5Tclose(type);
-    H5Aclose(a);
-    return value;
+    return testing::string_attribute(id_, object, name);
   }
   std::vector<std::string> fixed_strings(const std::string& object, const char* name) const {
     const hid_t a = H5Aopen_by_name(id_, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "../common/hdf5_text.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -33,22 +34,7 @@ void string_attribute(hid_t object, const char* name, const char* value, bool va
 }
 
 std::string read_string(hid_t file, const char* object, const char* name) {
-  const hid_t a = H5Aopen_by_name(file, object, name, H5P_DEFAULT, H5P_DEFAULT);
-  const hid_t type = H5Aget_type(a);
-  std::string value;
-  if (H5Tis_variable_str(type) > 0) {
-    char* text = nullptr;
-    H5Aread(a, type, &text);
-    value = text;
-    H5free_memory(text);
-  } else {
-    value.resize(H5Tget_size(type));
-    H5Aread(a, type, value.data());
-    value.resize(value.find('\0'));
-  }
-  H5Tclose(type);
-  H5Aclose(a);
-  return value;
+  return testing::string_attribute(file, object, name);
 }
 
 void dataset(hid_t file, const char* name, const std::vector<double>& values) {
