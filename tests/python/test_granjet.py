@@ -145,6 +145,16 @@ def test_arrays_are_read_only_views_without_copies():
     assert sim.stats()["steps"] > 0
 
 
+def test_a_million_grains_are_read_without_a_copy():
+    sim = granjet.Simulator(granjet.Scene.from_file(
+        scene_file("jet3d.ini"), ["jet.grains=1000000", "jet.diameter=100", "wall.diameter=220",
+                                  "region.radius=440"]))
+    first, second = sim.positions, sim.positions
+    assert first.shape[0] > 1_000_000 and first.shape[1] == 3
+    assert not first.flags.owndata and first.base is not None  # owned by the simulator
+    assert np.shares_memory(first, second)  # the same memory, read twice
+
+
 def test_contact_forces_of_the_soft_dem():
     sim = granjet.Simulator(granjet.Scene.from_file(scene_file("jet2d.ini"), SMALL_JET2D))
     sim.advance_to(4.0)
