@@ -27,6 +27,10 @@ class FileLock {
   FileLock(FileLock&& other) noexcept : fd_(std::exchange(other.fd_, -1)) {}
   ~FileLock();
 
+  // Whether another process holds the lock on `path`, without creating or locking it (false
+  // when it does not exist).
+  static bool held(const std::filesystem::path& path);
+
  private:
   int fd_ = -1;
 };

@@ -1,15 +1,18 @@
 #include "app/campaign_command.hpp"
 
+#include <optional>
 #include <ostream>
 
-#include "run/version.hpp"
+#include "analysis/file_lock.hpp"
 #include "campaign/campaign_file.hpp"
 #include "campaign/campaign_plan.hpp"
 #include "campaign/campaign_report.hpp"
 #include "campaign/campaign_runner.hpp"
+#include "campaign/campaign_status.hpp"
 #include "campaign/child_process.hpp"
 #include "campaign/mpi_world.hpp"
 #include "core/errors.hpp"
+#include "run/version.hpp"
 
 namespace granjet {
 
@@ -25,6 +28,10 @@ int campaign_command(const CampaignOptions& options, std::ostream& out) {
       options.out_dir.empty() ? std::filesystem::path("out") / stem : options.out_dir;
   plan_options.quick = options.quick;
   plan_options.only = options.only;
+  if (options.status) {
+    if (world.rank() == 0) print_campaign_status(plan_options.out_dir, out);
+    return 0;
+  }
   const CampaignPlan plan = plan_campaign(campaign, plan_options);
   const int jobs = options.jobs > 0 ? options.jobs : world.size() > 1 ? 1 : available_cores();
 
@@ -37,6 +44,15 @@ int campaign_command(const CampaignOptions& options, std::ostream& out) {
     return 0;
   }
   std::filesystem::create_directories(plan_options.out_dir);
+  // One campaign per DIR: two would run the same runs into the same files.
+  std::optional<analysis::FileLock> lock;
+  try {
+    lock.emplace(campaign_lock(plan_options.out_dir));
+  } catch (const analysis::FileBusyError&) {
+    throw InputError("--out", "'" + plan_options.out_dir.string() +
+                                  "' is being run by another granjet campaign; wait for it "
+                                  "(--status shows where it stands) or name another --out");
+  }
   RunnerOptions runner;
   runner.out_dir = plan_options.out_dir;
   runner.jobs = jobs;

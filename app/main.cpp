@@ -30,7 +30,7 @@ constexpr const char* kUsage = R"(usage:
               [--profile] [--no-signal-checkpoint]
   granjet compare SCENE.ini --out DIR [--set section.key=value ...] [--quiet]
   granjet campaign FILE.ini [--out DIR] [--jobs N] [--quick] [--only ID,...] [--dry-run]
-              [--quiet]            (mpirun -n K granjet campaign ... spreads it over K ranks)
+              [--status] [--quiet] (mpirun -n K granjet campaign ... spreads it over K ranks)
   granjet info run.h5 [--scene]
   granjet analyze run.h5 [--window t0:t1] [--summary fields.json]
   granjet --help | --version
@@ -76,6 +76,8 @@ campaign options (campaign files: see campaigns/thesis.ini and docs/campaigns.md
                     campaign's quick_fraction (for tests)
   --only IDS        only the groups serving these result ids (e.g. F5.3,T5.1)
   --dry-run         list the runs and their estimated cost; run nothing
+  --status          where DIR stands: running or not, runs by status, the time still to run,
+                    the failures with their logs; reads the manifest only
   --quiet           no row per finished run
 info options:
   --scene           print only the stored scene (a scene file that redoes the run)
@@ -201,7 +203,8 @@ int campaign(const std::vector<std::string>& args, const std::vector<std::string
   po::options_description desc;
   desc.add_options()("file", po::value<std::string>()->required())("out", po::value<std::string>())(
       "jobs", po::value(&o.jobs))("quick", po::bool_switch(&o.quick))("only", po::value(&only))(
-      "dry-run", po::bool_switch(&o.dry_run))("quiet", po::bool_switch(&o.quiet));
+      "dry-run", po::bool_switch(&o.dry_run))("status", po::bool_switch(&o.status))(
+      "quiet", po::bool_switch(&o.quiet));
   const po::variables_map vm = parse(args, desc, "file");
   o.file = vm["file"].as<std::string>();
   if (vm.count("out")) o.out_dir = vm["out"].as<std::string>();

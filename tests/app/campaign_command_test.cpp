@@ -151,7 +151,8 @@ TEST_F(CampaignCommand, KilledCampaignRerunFinishesOnlyTheRestWithTheSameFiles) 
 // Ctrl-C (SIGINT to the campaign alone: its runs have process groups of their own): no run
 // starts any more, the running one stops at its last scheduled checkpoint and is recorded as
 // interrupted, the campaign exits 130; run again, it resumes that run from its checkpoint, and
-// every file is the one a campaign never stopped writes.
+// every file is the one a campaign never stopped writes. Meanwhile a second campaign in the same
+// DIR is refused, and --status says where it stands.
 TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   const fs::path file = smoke_copy("jet.grains = 300\njet.diameter = 4\nwall.diameter = 8",
                                    "jet.grains = 4000\njet.diameter = 16\nwall.diameter = 36\n"
@@ -182,7 +183,12 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     try {
       const analysis::FileSummary s = analysis::read_summary(partial);
-      if (s.checkpoint && s.checkpoint_time >= 3.0) sent = kill(pid, SIGINT) == 0;
+      if (!s.checkpoint || s.checkpoint_time < 3.0) continue;
+      // One campaign per DIR: a second one is refused while the first runs.
+      EXPECT_EQ(granjet("campaign " + file.string() + only + stopped.string()), 2);
+      EXPECT_NE(err_.find("is being run by another granjet campaign"), std::string::npos) << err_;
+      EXPECT_EQ(granjet("campaign " + file.string() + " --status --out " + stopped.string()), 0);
+      sent = kill(pid, SIGINT) == 0;
     } catch (const std::exception&) {  // not written yet
     }
   }
@@ -195,6 +201,11 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   EXPECT_EQ(m["runs"]["jet3d/jet3d.seed1"]["status"], "interrupted");
   EXPECT_NE(m["runs"]["jet3d/jet3d.seed2"]["status"], "complete");  // never started
   EXPECT_TRUE(analysis::read_summary(partial).checkpoint);
+  ASSERT_EQ(granjet("campaign " + file.string() + " --status --out " + stopped.string()), 0);
+  std::ifstream report(dir_ / "stdout.txt");
+  const std::string said{std::istreambuf_iterator<char>(report), {}};
+  EXPECT_NE(said.find("not running"), std::string::npos) << said;
+  EXPECT_NE(said.find("jet3d/jet3d.seed1: interrupted (exit code 130"), std::string::npos) << said;
 
   ASSERT_EQ(granjet("campaign " + file.string() + only + stopped.string()), 0) << err_;
   m = manifest(stopped);

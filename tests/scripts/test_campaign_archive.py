@@ -196,7 +196,8 @@ def test_campaign_finds_every_archived_run_complete(tmp):
     assert "seeds combined into" not in out, out  # no ensemble merged again
     after = files_under(campaign)
     changed = sorted(n for n in after if before.get(n) != after[n])
-    assert changed == ["manifest.json"], changed  # only the invocation is recorded
+    # Only the invocation is recorded (campaign.lock: the empty file a running campaign locks).
+    assert changed == ["campaign.lock", "manifest.json"], changed
 
 
 def test_report_from_the_archive_is_the_same(tmp):

@@ -1,0 +1,56 @@
+#include "campaign/campaign_status.hpp"
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "analysis/file_lock.hpp"
+#include "campaign/campaign_report.hpp"
+#include "core/errors.hpp"
+
+namespace granjet {
+
+std::filesystem::path campaign_lock(const std::filesystem::path& dir) {
+  return dir / "campaign.lock";
+}
+
+void print_campaign_status(const std::filesystem::path& dir, std::ostream& out) {
+  std::ifstream in(dir / "manifest.json");
+  if (!in) throw InputError(dir.string(), "holds no manifest.json: no campaign ran there");
+  nlohmann::json m;
+  try {
+    m = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError((dir / "manifest.json").string(), std::string("is not JSON: ") + e.what());
+  }
+  const bool running = analysis::FileLock::held(campaign_lock(dir));
+  const nlohmann::json& last = m["invocations"].back();
+  out << "campaign " << m.value("campaign", std::string("?")) << " in " << dir.string() << ": "
+      << (running ? "running" : "not running") << " (last started " << last.value("started", "?")
+      << " on " << last.value("host", "?") << ", " << last.value("jobs", 1) << " job(s))\n";
+
+  std::map<std::string, std::size_t> by_status;
+  double to_run = 0.0;
+  std::size_t runs = 0;
+  for (const auto& [name, run] : m["runs"].items()) {
+    const std::string status = run.value("status", std::string("pending"));
+    ++by_status[status];
+    ++runs;
+    if (status != "complete" && status != "blown_up")
+      to_run += run["cost"].value("estimated_seconds", 0.0);
+  }
+  out << "runs: " << runs;
+  for (const auto& [status, count] : by_status) out << ", " << count << " " << status;
+  const int slots = std::max(1, last.value("jobs", 1) + last.value("ranks", 1) - 1);
+  out << "\nstill to run: about " << format_duration(to_run / slots) << " on " << slots
+      << " slot(s) (the plan's estimates)\n";
+  for (const auto& [name, run] : m["runs"].items()) {
+    const std::string status = run.value("status", std::string());
+    if (status == "failed" || status == "interrupted" || status == "blown_up")
+      out << "  " << name << ": " << status << " (exit code " << run.value("exit_code", -1)
+          << ", log " << run.value("log", std::string("?")) << ")\n";
+  }
+}
+
+}  // namespace granjet
