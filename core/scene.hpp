@@ -53,6 +53,9 @@ struct ContactSpec {
   bool clamp_normal = false;
   // mu_r of the rolling resistance (soft_dem/rolling_resistance.hpp; not in the study): 0, none.
   double rolling_friction = 0.0;
+  // F_a, the constant pull between touching grains (soft_dem/adhesion.hpp; not in the study):
+  // 0, none.
+  double adhesion = 0.0;
 };
 
 struct RunSpec {

@@ -41,6 +41,9 @@ SceneSupport scene_support(const Scene& scene) {
     support.notes.push_back(
         "contact.rolling_friction = " + number_text(scene.contact.rolling_friction) +
         " is ignored (hard grains do not turn)");
+  if (scene.contact.adhesion > 0.0)
+    support.notes.push_back("contact.adhesion = " + number_text(scene.contact.adhesion) +
+                            " is ignored (hard grains touch for no time)");
   support.notes.push_back(
       "contact.model, contact.contact_time, run.dt, run.integrator and run.skin have no "
       "hard-core meaning and are ignored");

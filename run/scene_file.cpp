@@ -209,6 +209,10 @@ const std::vector<Key>& keys() {
                          "rolling resistance mu_r: a torque mu_r R* |F_n| against the grains' "
                          "rolling on each other (0: none; not in the study)",
                          FIELD(contact.rolling_friction), kNonNegative));
+    k.push_back(real_key("contact.adhesion",
+                         "adhesion F_a: a constant pull between touching grains, the DMT form "
+                         "(0: none; not in the study)",
+                         FIELD(contact.adhesion), kNonNegative));
     k.push_back(real_key("run.t_end", "simulated time in d/u0", FIELD(run.t_end), kPositive));
     k.push_back(
         real_key("run.dt", "time step (0: 0.02 t_c, the study's)", FIELD(run.dt), kNonNegative));
@@ -569,6 +573,10 @@ void validate_scene(const Scene& s) {
                      format_number(s.contact.rolling_friction) +
                          " needs contact.friction > 0: without sliding friction the grains never "
                          "turn, so there is no rolling to resist");
+  if (s.contact.adhesion > 0.0 && s.contact.clamp_normal)
+    throw InputError("contact.adhesion", format_number(s.contact.adhesion) +
+                                             " pulls, which contact.clamp_normal = true forbids; "
+                                             "set one of them");
   if (s.periodic()) validate_gas(s);
   if (s.kind == SceneKind::kJet) validate_wall(s);
   if (s.kind == SceneKind::kJet && s.region.radius <= s.jet.outer_radius())

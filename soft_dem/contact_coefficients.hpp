@@ -18,6 +18,7 @@ struct ContactCoefficients {
   // The least normal force: -infinity (the linear law of [3.1], attraction allowed) or 0
   // (contact.clamp_normal). A floor, so the unclamped law is bit for bit the plain one.
   double normal_floor = -std::numeric_limits<double>::infinity();
+  double adhesion = 0.0;  // F_a (adhesion.hpp), the same for a pair and against the plate
 };
 
 // [3.4] t_c = pi / sqrt(2 k_n/m - eta_n^2) and [3.5] e = exp(-t_c eta_n), for two grains of

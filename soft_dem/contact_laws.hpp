@@ -2,7 +2,8 @@
 // backend that evaluates soft contacts includes it; each law is one header (the prototype,
 // with the interface a law provides, is linear_spring_dashpot.hpp) and one case below. A law
 // is a normal part with, when friction needs one, the tangential part of
-// coulomb_tangential.hpp; the optional parts wrap it (Rolling<Law>, rolling_resistance.hpp).
+// coulomb_tangential.hpp; optional parts either wrap it (Rolling<Law>, rolling_resistance.hpp)
+// or are a term its normal force takes, zero for none (adhesion.hpp).
 #pragma once
 
 #include "core/scene.hpp"

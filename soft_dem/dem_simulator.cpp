@@ -89,7 +89,8 @@ void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
 // contact carries the integrator's phase error while it lasts (a contact that starts inside a
 // step already stores 2% of E_0 at dt = 0.1 t_c, though the collision ends with e = 0.736);
 // the kinetic bound holds at every instant, so how often the caller looks does not matter.
-// 1% of E_0 leaves room for the integration error.
+// 1% of E_0 leaves room for the integration error. With adhesion the bound is kinetic less the
+// pull's work on the contacts of the moment.
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   if (scene_.contact.restitution >= 1.0) return;
@@ -99,6 +100,18 @@ void DemSimulator<D, Law, kMono, Space>::check_energy() const {
     kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
     if constexpr (kRotation)
       kinetic += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+  }
+  // The pull of adhesion is conservative: what it has given to the grains now touching is its
+  // work F_a delta over them (adhesion.hpp), which the kinetic energy may hold on top.
+  if (scene_.contact.adhesion > 0.0) {
+    for_each_contact(
+        [&](std::size_t, std::size_t, std::uint32_t, const ContactGeometry<D>& g, const Vec<D>&) {
+          kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
+        },
+        [](std::uint32_t) {});
+    for_each_plate_contact([&](std::size_t, const ContactGeometry<D>& g, const Vec<D>&) {
+      kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
+    });
   }
   const double rise = kinetic - initial_energy_;
   if (!(rise > 0.01 * initial_energy_)) return;

@@ -44,6 +44,7 @@
 #include "core/dim.hpp"
 #include "core/errors.hpp"
 #include "core/scene.hpp"
+#include "soft_dem/adhesion.hpp"
 #include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/coulomb_tangential.hpp"
 
@@ -112,6 +113,7 @@ struct HertzCoefficients {
   double damping_ratio = 0.0;  // c_t / c_n
   double mu = 0.0;             // Coulomb friction mu_p
   double normal_floor = 0.0;   // -infinity, or 0 with contact.clamp_normal
+  double adhesion = 0.0;       // F_a (adhesion.hpp)
 };
 
 // The mapping above from the scene's (e, t_c) for the reference pair of unit grains.
@@ -129,6 +131,7 @@ inline HertzCoefficients hertz_coefficients(const ContactSpec& spec) {
   c.damping_ratio = spec.damping_ratio;
   c.mu = spec.friction;
   c.normal_floor = spec.clamp_normal ? 0.0 : -std::numeric_limits<double>::infinity();
+  c.adhesion = spec.adhesion;
   return c;
 }
 
@@ -185,7 +188,7 @@ struct HertzMindlinOf {
     const double v_n = v_rel.dot(g.n);
     // (2/3) S_n delta = (4/3) E* sqrt(R_eff) delta^(3/2); d(delta)/dt = -v_n.
     const double f_n = std::max(c.normal_floor, 2.0 / 3.0 * s_n * g.overlap - c_n * v_n);
-    V f = f_n * g.n;
+    V f = with_adhesion(f_n, c.adhesion) * g.n;
     if constexpr (kFriction) {
       // Mindlin's k_t and c_t grow with the contact radius. A contact that slides has k_t > 0:
       // at a = 0 the trial force is 0 and does not exceed the limit, so 1/k_t's infinity is
@@ -199,7 +202,8 @@ struct HertzMindlinOf {
 
   double elastic_energy(const ContactGeometry<D>& g, const Vec<D>& shear) const {
     const double s_n = 2.0 * c.modulus * contact_radius(g);
-    double e = 4.0 / 15.0 * s_n * g.overlap * g.overlap;  // (2/5) K delta^(5/2)
+    double e = 4.0 / 15.0 * s_n * g.overlap * g.overlap +  // (2/5) K delta^(5/2)
+               adhesion_energy(g.overlap, c.adhesion);
     if constexpr (kFriction) e += 0.5 * c.spring_ratio * s_n * shear.squaredNorm();
     return e;
   }

@@ -31,6 +31,7 @@
 
 #include "core/dim.hpp"
 #include "core/scene.hpp"
+#include "soft_dem/adhesion.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 #include "soft_dem/contact_geometry.hpp"
 #include "soft_dem/coulomb_tangential.hpp"
@@ -81,7 +82,7 @@ struct LinearSpringDashpot {
     // [3.1] normal: F_n = -k_n u_n - eta_n du_n/dt with u_n = -overlap; never below the floor
     // (contact.clamp_normal).
     const double f_n = std::max(c.normal_floor, c.kn * g.overlap - c.eta_n * v_n);
-    V f = f_n * g.n;
+    V f = with_adhesion(f_n, c.adhesion) * g.n;
     if constexpr (kFriction)
       f += coulomb_tangential<D, V>(g.n, v_rel, v_n, shear, dt, c.kt, c.eta_t, inv_kt,
                                     c.mu * std::abs(f_n));
@@ -89,7 +90,7 @@ struct LinearSpringDashpot {
   }
 
   double elastic_energy(const ContactGeometry<D>& g, const Vec<D>& shear) const {
-    double e = 0.5 * c.kn * g.overlap * g.overlap;
+    double e = 0.5 * c.kn * g.overlap * g.overlap + adhesion_energy(g.overlap, c.adhesion);
     if constexpr (kFriction) e += 0.5 * c.kt * shear.squaredNorm();
     return e;
   }
