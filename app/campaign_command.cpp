@@ -36,7 +36,10 @@ int campaign_command(const CampaignOptions& options, std::ostream& out) {
   const int jobs = options.jobs > 0 ? options.jobs : world.size() > 1 ? 1 : available_cores();
 
   if (options.dry_run) {
-    if (world.rank() == 0) print_dry_run(campaign, plan, jobs + world.size() - 1, out);
+    if (world.rank() == 0) {
+      print_dry_run(campaign, plan, jobs + world.size() - 1, out);
+      print_what_would_run(plan, plan_options.out_dir, out);
+    }
     return 0;
   }
   if (world.rank() != 0) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <deque>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -13,6 +14,7 @@
 
 #include "analysis/h5md_reader.hpp"
 #include "campaign/campaign_manifest.hpp"
+#include "core/number_text.hpp"
 #include "run/backend_factory.hpp"
 #include "run/ensemble_output.hpp"
 #include "run/interrupts.hpp"
@@ -346,6 +348,8 @@ RunState stored_state(const PlannedRun& run) {
   return RunState::kMissing;
 }
 
+namespace {
+
 // Whether the run's .partial holds a checkpoint of this very run: a run interrupted (or killed)
 // after it goes on from there.
 bool resumable(const PlannedRun& run) {
@@ -355,6 +359,78 @@ bool resumable(const PlannedRun& run) {
   } catch (const std::exception&) {
     return false;
   }
+}
+
+// "section.key" -> value of a scene's INI text (scene_to_ini's layout).
+std::map<std::string, std::string> ini_values(const std::string& ini) {
+  std::map<std::string, std::string> values;
+  std::istringstream in(ini);
+  std::string section;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    if (line.front() == '[' && line.back() == ']') {
+      section = line.substr(1, line.size() - 2);
+      continue;
+    }
+    const std::size_t eq = line.find(" = ");
+    if (eq != std::string::npos) values[section + "." + line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return values;
+}
+
+// A value as messages show it: numbers with six digits (the INI keeps 17 to round-trip).
+std::string shown(const std::string& value) {
+  try {
+    std::size_t used = 0;
+    const double number = std::stod(value, &used);
+    if (used == value.size()) return number_text(number);
+  } catch (const std::logic_error&) {
+  }
+  return value;
+}
+
+// The keys whose values differ, "KEY A -> B", at most three and how many more.
+std::string changed_keys(const std::string& stored, const std::string& planned) {
+  const std::map<std::string, std::string> a = ini_values(stored), b = ini_values(planned);
+  std::vector<std::string> changes;
+  for (const auto& [key, value] : b) {
+    const auto it = a.find(key);
+    const std::string old_value = it == a.end() ? "(none)" : it->second;
+    if (old_value != value) changes.push_back(key + " " + shown(old_value) + " -> " + shown(value));
+  }
+  for (const auto& [key, value] : a)
+    if (!b.contains(key)) changes.push_back(key + " " + shown(value) + " -> (none)");
+  std::string text;
+  for (std::size_t k = 0; k < changes.size() && k < 3; ++k)
+    text += (k > 0 ? ", " : "") + changes[k];
+  if (changes.size() > 3) text += " and " + std::to_string(changes.size() - 3) + " more";
+  return text.empty() ? "the backend" : text;
+}
+
+}  // namespace
+
+std::string why_it_runs(const PlannedRun& run) {
+  const RunState state = stored_state(run);
+  if (state == RunState::kComplete || state == RunState::kBlownUp) return "";
+  if (resumable(run))
+    return "resumes from its checkpoint at t = " +
+           std::to_string(analysis::read_summary(run.file(".h5.partial")).checkpoint_time);
+  for (const char* kept : {".h5", ".h5.partial"}) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(run.file(kept), ec)) continue;
+    try {
+      const analysis::FileSummary s = analysis::read_summary(run.file(kept));
+      std::istringstream stored(s.scene_ini);
+      const Scene scene =
+          check_backend(s.backend, parse_scene(stored, run.file(kept).string(), {})).resolved;
+      if (scene_hash(s.backend, scene_to_ini(scene)) != run.hash)
+        return "its file holds another scene: " + changed_keys(scene_to_ini(scene), run.scene_ini);
+      return "stopped before its end (status " + s.status + ")";
+    } catch (const std::exception& e) {
+      return std::string("its file cannot be read (") + e.what() + ")";
+    }
+  }
+  return "not run yet";
 }
 
 ChildProcess start_run(const PlannedRun& run) {

@@ -22,6 +22,12 @@ namespace granjet {
 // kMissing.
 RunState stored_state(const PlannedRun& run);
 
+// Why the next invocation would run `run`, for --dry-run; empty when it is done (kComplete or
+// kBlownUp). "resumes from its checkpoint at t = T"; "its file holds another scene: KEY A -> B,
+// ..." (the keys whose resolved values differ, the stored scene read by today's parser, so an
+// upgrade that changes a default names it); "stopped before its end (status S)"; "not run yet".
+std::string why_it_runs(const PlannedRun& run);
+
 // Writes the run's resolved scene (.ini), clears its earlier outputs and starts
 // `granjet run NAME.ini --backend B --out NAME.h5 --summary NAME.json` with its log in NAME.log.
 ChildProcess start_run(const PlannedRun& run);

@@ -1,12 +1,16 @@
 #include "campaign/campaign_status.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "analysis/file_lock.hpp"
 #include "campaign/campaign_report.hpp"
+#include "campaign/campaign_runner.hpp"
 #include "core/errors.hpp"
 
 namespace granjet {
@@ -51,6 +55,28 @@ void print_campaign_status(const std::filesystem::path& dir, std::ostream& out) 
       out << "  " << name << ": " << status << " (exit code " << run.value("exit_code", -1)
           << ", log " << run.value("log", std::string("?")) << ")\n";
   }
+}
+
+void print_what_would_run(const CampaignPlan& plan, const std::filesystem::path& dir,
+                          std::ostream& out) {
+  std::map<std::string, std::size_t> by_reason;
+  std::vector<std::string> changed;
+  std::size_t done = 0;
+  for (const PlannedRun& run : plan.runs) {
+    const std::string why = why_it_runs(run);
+    if (why.empty()) {
+      ++done;
+      continue;
+    }
+    // Counted by the reason's kind, the part before its details.
+    ++by_reason[why.substr(0, std::min(why.find(':'), why.find(" at t = ")))];
+    if (why.rfind("its file holds another scene", 0) == 0) changed.push_back(run.name + ": " + why);
+  }
+  out << "in " << dir.string() << ": " << done << " of " << plan.runs.size()
+      << " runs done; the next invocation runs " << plan.runs.size() - done;
+  for (const auto& [reason, count] : by_reason) out << "; " << count << " " << reason;
+  out << "\n";
+  for (const std::string& line : changed) out << "  " << line << "\n";
 }
 
 }  // namespace granjet

@@ -2,6 +2,7 @@
 // merging, resuming after a kill, --jobs and MPI ranks giving the same files, a changed key
 // rerunning only its group, malformed files refused, and the thesis campaign's dry run.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -279,6 +280,56 @@ TEST_F(CampaignCommand, AnEntryUnderAnOlderHashKeepsItsHistory) {
   EXPECT_EQ(m["runs"][name]["hash"], current);
   EXPECT_EQ(m["runs"][name]["wall_seconds"], 123.5);
   EXPECT_EQ(m["runs"][name]["host"], "elsewhere");
+}
+
+// Stores `scene` as the file's /parameters/granjet/scene (a fixed-length string, as written).
+void store_scene(const fs::path& file, const std::string& scene) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  H5Ldelete(f, "/parameters/granjet/scene", H5P_DEFAULT);
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, scene.size() + 1);
+  const hid_t space = H5Screate(H5S_SCALAR);
+  const hid_t set = H5Dcreate2(f, "/parameters/granjet/scene", type, space, H5P_DEFAULT,
+                               H5P_DEFAULT, H5P_DEFAULT);
+  H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, scene.c_str());
+  H5Dclose(set);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Fclose(f);
+}
+
+// Upgrades: a run whose file an older granjet wrote, without the keys added since (their
+// defaults keep the old physics), is still done, and --dry-run says so; a changed key makes
+// --dry-run name the runs it would redo, with the key's old and new value.
+TEST_F(CampaignCommand, DryRunSaysWhatAnUpgradeOrAChangedKeyWouldRedo) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --quiet --out " + out.string()), 0);
+  const fs::path old_file = out / "jet2d" / "friction-0.seed1.h5";
+  std::string scene = analysis::read_summary(old_file).scene_ini;
+  for (const std::string added : {"rolling_friction = 0\n", "adhesion = 0\n"}) {
+    ASSERT_NE(scene.find(added), std::string::npos) << added;
+    scene.erase(scene.find(added), added.size());
+  }
+  store_scene(old_file, scene);
+  ASSERT_EQ(granjet("campaign " + kSmoke + " --dry-run --out " + out.string()), 0) << err_;
+  std::ifstream said(dir_ / "stdout.txt");
+  const std::string dry{std::istreambuf_iterator<char>(said), {}};
+  EXPECT_NE(dry.find("10 of 10 runs done; the next invocation runs 0"), std::string::npos) << dry;
+
+  const std::string hard2d = "backend = event_driven\n";
+  ASSERT_EQ(granjet("campaign " + smoke_copy(hard2d, hard2d + "ed.v0 = 0.2\n").string() +
+                    " --dry-run --out " + out.string()),
+            0)
+      << err_;
+  std::ifstream said_again(dir_ / "stdout.txt");
+  const std::string changed{std::istreambuf_iterator<char>(said_again), {}};
+  EXPECT_NE(changed.find("8 of 10 runs done; the next invocation runs 2; 2 its file holds another "
+                         "scene"),
+            std::string::npos)
+      << changed;
+  EXPECT_NE(changed.find("hard2d/hard2d.seed1: its file holds another scene: ed.v0 0.1 -> 0.2"),
+            std::string::npos)
+      << changed;
 }
 
 TEST_F(CampaignCommand, MalformedCampaignExitsTwoNamingGroupAndKeyAndWritesNothing) {
