@@ -4,6 +4,8 @@
 
 #include <hdf5.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -69,12 +71,14 @@ class H5Context {
   [[noreturn]] void fail(std::string_view action, std::string_view object) const {
     std::string what = "cannot ";
     what.append(action).append(" ").append(object);
-    if (const std::string reason = system_reason(); !reason.empty())
-      what.append(": ").append(reason);
+    const std::string reason = system_reason();
+    if (!reason.empty()) what.append(": ").append(reason);
     if (role_ == Role::kInput) throw InputError(file_.string(), what);
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "'" + std::string once inlined.
     std::string message = "'";
     message.append(file_.string()).append("': ").append(what);
+    if (reason == std::strerror(ENOSPC) || reason == std::strerror(EDQUOT))
+      throw DiskFullError(message);
     throw std::runtime_error(message);
   }
   H5Handle own(hid_t id, H5Handle::Closer close, std::string_view action,

@@ -24,6 +24,7 @@ namespace granjet {
 namespace {
 
 constexpr auto kPoll = std::chrono::milliseconds(20);
+constexpr int kDiskFull = 4;  // granjet's exit code (run/failure_report.hpp)
 
 std::optional<nlohmann::json> read_json(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -218,6 +219,13 @@ class Coordinator {
   }
 
   void finished(std::size_t r, int code, double seconds, int rank) {
+    // A full disk stops the campaign starting runs: each would fail the same way.
+    if (code == kDiskFull && !queue_.empty()) {
+      queue_.clear();
+      out_ << "no space left on the disk (" << plan_.runs[r].name
+           << "): no more runs are started; free space and run the same command\n"
+           << std::flush;
+    }
     RunOutcome& o = outcomes_[r];
     o.state = state_of_exit(code);
     o.executed = true;

@@ -22,6 +22,13 @@ class InputError : public std::runtime_error {
   std::string key_;
 };
 
+// A write that found no space left (ENOSPC, or a quota: EDQUOT). Exit code 4: the run's
+// .partial keeps its last checkpoint, and `granjet resume` goes on from it once space is free.
+class DiskFullError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // A run that went numerically wrong (NaN, overlap beyond the allowed fraction).
 class BlowUpError : public std::runtime_error {
  public:

@@ -17,6 +17,12 @@ int report_current_exception(std::ostream& err) {
   } catch (const analysis::FileBusyError& e) {
     err << "granjet: " << e.what() << "; wait for it or name another --out\n";
     return 2;
+  } catch (const DiskFullError& e) {
+    err << "granjet: " << e.what()
+        << "\ngranjet: free space, then go on: `granjet resume RUN.h5.partial` from its last "
+           "checkpoint where it holds one (`granjet info` says), else run it again; a campaign: "
+           "run it again\n";
+    return 4;
   } catch (const BlowUpError& e) {  // while building the grains, before any output
     err << "granjet: " << e.what() << "\n";
     return 3;

@@ -1,6 +1,7 @@
 // A run on a filesystem too small for its frames: a clear error naming the cause (errno's text)
-// and exit code 1, not a crash. The test mounts a 4 MB tmpfs, which needs root; elsewhere it
-// is skipped with the reason.
+// and exit code 4, not a crash; once space is free, `granjet resume` goes on from the .partial's
+// last checkpoint to the run's file bit for bit. The test mounts small tmpfs filesystems, which
+// needs root; elsewhere it is skipped with the reason.
 #include <sys/mount.h>
 
 #include <cerrno>
@@ -33,9 +34,30 @@ TEST_F(FullDisk, RunNamesNoSpaceAndExitsWithoutACrash) {
   const int code = granjet("run " + scene("jet3d.ini") +
                            " --quiet --set run.t_end=20 --set output.interval=1 --out " +
                            (small_ / "j.h5").string());
-  EXPECT_EQ(code, 1) << err_;
+  EXPECT_EQ(code, 4) << err_;
   EXPECT_NE(err_.find("No space left on device"), std::string::npos) << err_;
   EXPECT_FALSE(std::filesystem::exists(small_ / "j.h5"));  // never a file under the final name
+}
+
+TEST_F(FullDisk, RunResumesFromItsLastCheckpointOnceSpaceIsFree) {
+  // 40 MB hold a checkpoint (t = 12) before the frames fill the disk; then 200 MB hold it all.
+  ASSERT_EQ(::mount("tmpfs", small_.c_str(), "tmpfs", MS_REMOUNT, "size=40m"), 0)
+      << std::strerror(errno);
+  const std::string run = "run " + scene("jet3d.ini") +
+                          " --quiet --no-log --set run.t_end=20 --set output.interval=1"
+                          " --set run.checkpoint_interval=2 --out ";
+  ASSERT_EQ(granjet(run + (small_ / "j.h5").string()), 4) << err_;
+  EXPECT_NE(err_.find("No space left on device"), std::string::npos) << err_;
+  ASSERT_EQ(::mount("tmpfs", small_.c_str(), "tmpfs", MS_REMOUNT, "size=200m"), 0)
+      << std::strerror(errno);
+  ASSERT_EQ(granjet("resume " + (small_ / "j.h5.partial").string() + " --quiet --no-log"), 0)
+      << err_;
+  ASSERT_EQ(granjet(run + (dir_ / "straight.h5").string()), 0) << err_;
+  for (const char* group : {"/particles", "/observables"}) {
+    const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (small_ / "j.h5").string() +
+                            " " + (dir_ / "straight.h5").string() + " " + group + " " + group;
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << group;
+  }
 }
 
 }  // namespace
