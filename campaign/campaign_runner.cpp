@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <ostream>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -226,6 +227,19 @@ class Coordinator {
            << "): no more runs are started; free space and run the same command\n"
            << std::flush;
     }
+    // A run killed from outside (kill -9, the kernel's out-of-memory killer) goes back to the
+    // queue once and resumes from its checkpoint; a second kill is its failure.
+    if (code == 128 + SIGKILL && interrupted_ == 0 && !requeued_.contains(r)) {
+      requeued_.insert(r);
+      queue_.push_front(r);
+      manifest_.run(plan_.runs[r].name)["status"] = "pending";
+      manifest_.save();
+      if (!options_.quiet)
+        out_ << plan_.runs[r].name << "  killed (exit code " << code
+             << "): back in the queue, to resume from its checkpoint\n"
+             << std::flush;
+      return;
+    }
     RunOutcome& o = outcomes_[r];
     o.state = state_of_exit(code);
     o.executed = true;
@@ -341,7 +355,8 @@ class Coordinator {
   std::chrono::steady_clock::time_point start_;
   std::size_t found_ = 0, executed_ = 0;
   double to_do_seconds_ = 0.0, done_seconds_ = 0.0;
-  int interrupted_ = 0;  // the signal that stopped this invocation
+  int interrupted_ = 0;             // the signal that stopped this invocation
+  std::set<std::size_t> requeued_;  // runs killed once and queued again
 };
 
 }  // namespace

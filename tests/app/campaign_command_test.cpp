@@ -64,6 +64,38 @@ class CampaignCommand : public CommandTest {
     std::ofstream(file) << text;
     return file;
   }
+  // smoke.ini whose jet3d group (F5.3: two seeds) runs a few seconds with a checkpoint every
+  // time unit, long enough to be stopped on the way.
+  fs::path long_jet3d() const {
+    const fs::path file = smoke_copy("jet.grains = 300\njet.diameter = 4\nwall.diameter = 8",
+                                     "jet.grains = 4000\njet.diameter = 16\nwall.diameter = 36\n"
+                                     "run.checkpoint_interval = 1");
+    std::string text;
+    {
+      std::ifstream in(file);
+      text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    text.replace(text.find("region.radius = 16"), 18, "region.radius = 72");
+    text.replace(text.find("run.t_end = 10"), 14, "run.t_end = 40");
+    std::ofstream(file) << text;
+    return file;
+  }
+  // Whether `partial` holds a checkpoint at `after` or later (false while it is written).
+  static bool checkpointed(const fs::path& partial, double after) {
+    try {
+      const analysis::FileSummary s = analysis::read_summary(partial);
+      return s.checkpoint && s.checkpoint_time >= after;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  static void expect_same_jet3d(const fs::path& a, const fs::path& b) {
+    for (const char* f : {"jet3d.seed1.h5", "jet3d.seed2.h5", "jet3d.h5"}) {
+      const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (a / "jet3d" / f).string() +
+                              " " + (b / "jet3d" / f).string();
+      EXPECT_EQ(std::system(cmd.c_str()), 0) << f;
+    }
+  }
 };
 
 TEST_F(CampaignCommand, SmokeRunsEveryRunMergesEachEnsembleAsRunSeedsDoesAndSkipsWhatIsDone) {
@@ -155,18 +187,8 @@ TEST_F(CampaignCommand, KilledCampaignRerunFinishesOnlyTheRestWithTheSameFiles) 
 // every file is the one a campaign never stopped writes. Meanwhile a second campaign in the same
 // DIR is refused, and --status says where it stands.
 TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
-  const fs::path file = smoke_copy("jet.grains = 300\njet.diameter = 4\nwall.diameter = 8",
-                                   "jet.grains = 4000\njet.diameter = 16\nwall.diameter = 36\n"
-                                   "run.checkpoint_interval = 1");
+  const fs::path file = long_jet3d();
   const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
-  std::string text;
-  {
-    std::ifstream in(file);
-    text.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  text.replace(text.find("region.radius = 16"), 18, "region.radius = 72");
-  text.replace(text.find("run.t_end = 10"), 14, "run.t_end = 40");
-  std::ofstream(file) << text;
   const fs::path straight = dir_ / "straight", stopped = dir_ / "stopped";
   ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
 
@@ -183,8 +205,7 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   for (int tries = 0; tries < 6000 && !sent; ++tries) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     try {
-      const analysis::FileSummary s = analysis::read_summary(partial);
-      if (!s.checkpoint || s.checkpoint_time < 3.0) continue;
+      if (!checkpointed(partial, 3.0)) continue;
       // One campaign per DIR: a second one is refused while the first runs.
       EXPECT_EQ(granjet("campaign " + file.string() + only + stopped.string()), 2);
       EXPECT_NE(err_.find("is being run by another granjet campaign"), std::string::npos) << err_;
@@ -214,12 +235,41 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   std::ifstream log(stopped / "jet3d" / "jet3d.seed1.log");
   const std::string logged{std::istreambuf_iterator<char>(log), {}};
   EXPECT_NE(logged.find("continuing "), std::string::npos) << "resumed, not run again";
-  for (const char* f : {"jet3d.seed1.h5", "jet3d.seed2.h5", "jet3d.h5"}) {
-    const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " +
-                            (straight / "jet3d" / f).string() + " " +
-                            (stopped / "jet3d" / f).string();
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << f;
+  expect_same_jet3d(straight, stopped);
+}
+
+// kill -9 of a run (the out-of-memory killer, an operator): the run goes back to the queue once,
+// resumes from its checkpoint, and the campaign ends complete with the files of one never hit.
+TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
+  const fs::path file = long_jet3d();
+  const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
+  const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
+  ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string out = hit.string(), campaign = file.string();
+    execl(GRANJET_BINARY, GRANJET_BINARY, "campaign", campaign.c_str(), "--jobs", "1", "--only",
+          "F5.3", "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
   }
+  bool killed = false;
+  for (int tries = 0; tries < 6000 && !killed; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (checkpointed(hit / "jet3d" / "jet3d.seed1.h5.partial", 3.0))
+      // [.]: the pattern must not match the shell that runs pkill.
+      killed = std::system("pkill -KILL -f 'run .*jet3d[.]seed1[.]ini'") == 0;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(killed) << "the run ended before it could be killed";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(manifest(hit)["runs"]["jet3d/jet3d.seed1"]["status"], "complete");
+  std::ifstream log(hit / "jet3d" / "jet3d.seed1.log");
+  const std::string logged{std::istreambuf_iterator<char>(log), {}};
+  EXPECT_NE(logged.find("continuing "), std::string::npos) << "resumed, not run again";
+  expect_same_jet3d(straight, hit);
 }
 
 TEST_F(CampaignCommand, OneJobTwoJobsAndTwoMpiRanksGiveTheSameFiles) {
