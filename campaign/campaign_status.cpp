@@ -38,7 +38,9 @@ void print_campaign_status(const std::filesystem::path& dir, std::ostream& out) 
   double to_run = 0.0;
   std::size_t runs = 0;
   for (const auto& [name, run] : m["runs"].items()) {
-    const std::string status = run.value("status", std::string("pending"));
+    std::string status = run.value("status", std::string("pending"));
+    // Left "running" by a campaign that ended without a word (kill -9, a lost MPI rank).
+    if (status == "running" && !running) status = "stopped";
     ++by_status[status];
     ++runs;
     if (status != "complete" && status != "blown_up")
