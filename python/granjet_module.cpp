@@ -31,6 +31,7 @@
 #include "run/run_budget.hpp"
 #include "run/run_command.hpp"
 #include "run/scene_file.hpp"
+#include "run/version.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 
 namespace py = pybind11;
@@ -349,6 +350,8 @@ PYBIND11_MODULE(granjet, m) {
   using namespace granjet;
   using granjet::python::PySimulator;
   m.doc() = "granjet: granular jets on a soft-sphere DEM and an event-driven hard-sphere backend";
+  // As `granjet --version` gives it, and as the files this build writes record it.
+  m.attr("__version__") = std::string(kVersion) + "+" + kCommit;
 
   static py::exception<InputError> scene_error(m, "SceneError");
   static py::exception<BlowUpError> blow_up_error(m, "BlowUpError");

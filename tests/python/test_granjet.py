@@ -96,6 +96,12 @@ SMALL_GAS3D = ["gas.grains=500", "gas.equilibration=1", "run.t_end=3"]
 @pytest.mark.parametrize("name, overrides", [("jet2d.ini", SMALL_JET2D),
                                              ("gas3d.ini", SMALL_GAS3D)])
 def test_run_writes_the_clis_file(name, overrides, backend, tmp_path):
+    # The files record the build (/h5md/creator version): the module and the command must be one.
+    version = subprocess.run([BINARY, "--version"], capture_output=True, text=True).stdout
+    commit = granjet.__version__.split("+")[1]
+    assert f"(commit {commit})" in version, (
+        f"the module ({granjet.__version__}) and the command ({version.strip()}) come from "
+        "different builds: build both (cmake --build build)")
     cli, py = tmp_path / "cli.h5", tmp_path / "py.h5"
     subprocess.run([BINARY, "run", scene_file(name), "--backend", backend, "--quiet", "--no-log",
                     "--out", str(cli)] + sum((["--set", o] for o in overrides), []),
