@@ -294,6 +294,62 @@ TEST_F(CampaignCommand, OneJobTwoJobsAndTwoMpiRanksGiveTheSameFiles) {
 #endif
 }
 
+#ifdef GRANJET_HAS_MPI
+// The MPI rank (1) among the processes running `pattern`, by its Open MPI environment; 0: none.
+pid_t rank_one(const std::string& pattern) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream cmdline(entry.path() / "cmdline"), environ(entry.path() / "environ");
+    const std::string command{std::istreambuf_iterator<char>(cmdline), {}};
+    const std::string env{std::istreambuf_iterator<char>(environ), {}};
+    if (command.find(pattern) != std::string::npos &&
+        env.find(std::string("OMPI_COMM_WORLD_RANK=1") + '\0') != std::string::npos)
+      return static_cast<pid_t>(std::stol(name));
+  }
+  return 0;
+}
+
+// kill -9 of an MPI rank mid-campaign: Open MPI ends the whole job (its default), rank 0 stops
+// its run at its checkpoint, the dead rank's run dies with it; run again (here on one process),
+// the campaign resumes both and its files are those of a campaign never hit.
+TEST_F(CampaignCommand, ALostMpiRankEndsTheJobAndARerunFinishesIt) {
+  const fs::path file = long_jet3d();
+  const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
+  ASSERT_EQ(granjet("campaign " + file.string() + " --quiet --jobs 1 --only F5.3 --out " +
+                    straight.string()),
+            0)
+      << err_;
+  const std::string cmd = std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe " +
+                          "-n 2 " + GRANJET_BINARY + " campaign " + file.string() +
+                          " --quiet --only F5.3 --out " + hit.string() + " > " +
+                          (dir_ / "mpi.txt").string() + " 2>&1";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  bool killed = false;
+  for (int tries = 0; tries < 6000 && !killed; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!checkpointed(hit / "jet3d" / "jet3d.seed1.h5.partial", 2.0) ||
+        !checkpointed(hit / "jet3d" / "jet3d.seed2.h5.partial", 2.0))
+      continue;
+    if (const pid_t rank = rank_one("campaign"); rank > 0) killed = kill(rank, SIGKILL) == 0;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(killed) << "the runs ended before a rank could be killed";
+  EXPECT_NE(WEXITSTATUS(status), 0);  // the job ended
+  ASSERT_EQ(
+      granjet("campaign " + file.string() + " --quiet --jobs 1 --only F5.3 --out " + hit.string()),
+      0)
+      << err_;
+  expect_same_jet3d(straight, hit);
+}
+#endif
+
 TEST_F(CampaignCommand, AChangedKeyRerunsOnlyItsGroup) {
   const fs::path out = dir_ / "out";
   ASSERT_EQ(granjet("campaign " + smoke_copy().string() + " --quiet --out " + out.string()), 0);
