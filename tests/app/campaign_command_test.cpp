@@ -89,6 +89,17 @@ class CampaignCommand : public CommandTest {
       return false;
     }
   }
+  // Starts `granjet campaign FILE --quiet --jobs 1 --only F5.3 --out OUT` in the background.
+  static pid_t start_campaign(const fs::path& file, const fs::path& out) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      const std::string dir = out.string(), campaign = file.string();
+      execl(GRANJET_BINARY, GRANJET_BINARY, "campaign", campaign.c_str(), "--quiet", "--jobs", "1",
+            "--only", "F5.3", "--out", dir.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    return pid;
+  }
   static void expect_same_jet3d(const fs::path& a, const fs::path& b) {
     for (const char* f : {"jet3d.seed1.h5", "jet3d.seed2.h5", "jet3d.h5"}) {
       const std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + (a / "jet3d" / f).string() +
@@ -192,14 +203,8 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   const fs::path straight = dir_ / "straight", stopped = dir_ / "stopped";
   ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
 
-  const pid_t pid = fork();
+  const pid_t pid = start_campaign(file, stopped);
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string out = stopped.string(), campaign = file.string();
-    execl(GRANJET_BINARY, GRANJET_BINARY, "campaign", campaign.c_str(), "--quiet", "--jobs", "1",
-          "--only", "F5.3", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
   const fs::path partial = stopped / "jet3d" / "jet3d.seed1.h5.partial";
   bool sent = false;
   for (int tries = 0; tries < 6000 && !sent; ++tries) {
@@ -245,14 +250,8 @@ TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
   const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
   const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
   ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
-  const pid_t pid = fork();
+  const pid_t pid = start_campaign(file, hit);
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string out = hit.string(), campaign = file.string();
-    execl(GRANJET_BINARY, GRANJET_BINARY, "campaign", campaign.c_str(), "--jobs", "1", "--only",
-          "F5.3", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
   bool killed = false;
   for (int tries = 0; tries < 6000 && !killed; ++tries) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
