@@ -9,7 +9,9 @@
 #
 # Usage: bench/scaling.sh   (from the repository root, after building build/app/granjet)
 # Environment: THREADS (default "1 2 ... nproc"), ROUNDS (default 2), T_END (overrides both
-# scenes' run.t_end, e.g. 10 for a quick look), GRANJET (the binary, default build/app/granjet).
+# scenes' run.t_end, e.g. 10 for a quick look), GRANJET (the binary, default build/app/granjet),
+# PROFILES (a folder: each run's summary, with its per-phase profile, is kept there as
+# SCENE-tTHREADS-rROUND.json), SCENES (which of the two, default "jet3d jet3d_large").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 granjet=${GRANJET:-$root/build/app/granjet}
@@ -17,6 +19,7 @@ granjet=${GRANJET:-$root/build/app/granjet}
 threads=${THREADS:-$(seq -s ' ' 1 "$(nproc)")}
 rounds=${ROUNDS:-2}
 work=$(mktemp -d)
+[ -n "${PROFILES:-}" ] && mkdir -p "$PROFILES"
 trap 'rm -rf "$work"' EXIT
 
 # name, scene file, overrides
@@ -25,13 +28,14 @@ scenes=(
   "jet3d_large|$root/scenes/jet3d_large.ini|"
 )
 
-one_run() {  # scene file, overrides, threads: prints "wall_seconds psteps_per_second serial_share"
+one_run() {  # scene file, overrides, threads, label: prints "wall_seconds psteps_per_second serial_share"
   local extra=()
   [ -n "${T_END:-}" ] && extra=(--set "run.t_end=$T_END")
   # shellcheck disable=SC2086  # the overrides are words
   "$granjet" run "$1" $2 "${extra[@]}" --set "run.threads=$3" --quiet --no-log --profile \
     --out "$work/run.h5" --summary "$work/run.json" >/dev/null 2>"$work/stderr" ||
     { cat "$work/stderr" >&2; exit 1; }
+  [ -n "${PROFILES:-}" ] && cp "$work/run.json" "$PROFILES/$4.json"
   python3 -c 'import json, sys; s = json.load(open(sys.argv[1]))
 print(s["wall_seconds"], s["particle_steps_per_second"], s["profile"]["serial_share"])' \
     "$work/run.json"
@@ -42,10 +46,11 @@ echo "rounds: $rounds (fastest kept), threads: $threads${T_END:+, t_end: $T_END}
 printf '%-12s %7s %10s %14s %9s %10s %8s\n' scene threads wall_s psteps/s speed-up efficiency serial
 for entry in "${scenes[@]}"; do
   IFS='|' read -r name file overrides <<<"$entry"
+  [[ " ${SCENES:-jet3d jet3d_large} " == *" $name "* ]] || continue
   declare -A best=()
   for ((r = 0; r < rounds; ++r)); do
     for n in $threads; do
-      read -r wall rate serial < <(one_run "$file" "$overrides" "$n")
+      read -r wall rate serial < <(one_run "$file" "$overrides" "$n" "$name-t$n-r$r")
       if [ -z "${best[$n]:-}" ] || python3 -c "import sys; sys.exit(not $wall < ${best[$n]%% *})"
       then best[$n]="$wall $rate $serial"; fi
     done

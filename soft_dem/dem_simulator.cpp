@@ -1,6 +1,7 @@
 #include "soft_dem/dem_simulator.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <span>
@@ -221,7 +222,6 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
     wall_.add_forces(
         p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_), threads_);
   }
-  for (std::uint8_t& bits : forced_) bits = static_cast<std::uint8_t>((bits & 1) << 1);
   if (!quiet_.fresh()) {
     const auto radius = p_.radius();
     quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
@@ -230,8 +230,8 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
                     });
   }
   pass_.find_contacts(p_, pairs_, pair_row_, quiet_.tested(), space_);
-  const std::size_t first_blown = pass_.evaluate_contacts(
-      law_, p_, pairs_, pair_row_, space_, {force_.data(), torque_.data(), forced_.data()});
+  const std::size_t first_blown =
+      pass_.evaluate_contacts(law_, p_, space_, {force_.data(), torque_.data(), forced_.data()});
   const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
   stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
 
@@ -254,8 +254,13 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
       if (touch == Touch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
     }
   }
-  quiet_.after_pass(forced_);
-  const double largest = pass_.update_grains(forced_, p_.kind(), tethered_, advance, coast);
+  std::atomic<bool> trusted_pushed = false;
+  const double largest = pass_.update_grains(
+      forced_, p_.kind(), tethered_, advance, coast, [&](std::size_t begin, std::size_t end) {
+        if (quiet_.trusted_pushed(forced_, begin, end))
+          trusted_pushed.store(true, std::memory_order_relaxed);
+      });
+  quiet_.after_pass(trusted_pushed.load(std::memory_order_relaxed));
   // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
   // row i + 1); the state it integrated is lost anyway.
   if (first_blown < contact_pair.size()) {
@@ -437,7 +442,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
 #pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
   for (std::int64_t i = 0; i < n; ++i) {
     force_[i].setZero();  // rebuilds come between force passes
-    forced_[i] = 3;       // unknown after the reordering: assume forces
+    forced_[i] = 2;       // unknown after the reordering: assume a force at the last pass
     torque_[i] = Dim<D>::zero_spin();
     index_of_id_[id[i]] = static_cast<std::uint32_t>(i);
   }

@@ -2,27 +2,29 @@
 // update of the grains that ends it. The simulator runs the phases in this order:
 //  1. find_contacts: the listed pairs that touch (a distance test per pair, kept branch-free:
 //     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
-//     of varying length mispredicts), each with its history carried over (ContactHistory);
+//     of varying length mispredicts), each with its grains and its history carried over
+//     (ContactHistory);
 //  2. evaluate_contacts: each contact's force and torques from its geometry and history, in
 //     blocks of contacts held as columns (ContactTable), two vectorised loops per block;
 //  3. ContactSums: every grain sums its contacts in list order (the rows k < i that list it,
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
 //     the same bits. It runs inside 2, block by block, each thread over its own stretch of
 //     contacts; a grain that an earlier stretch touches too gets the later stretches' parts
-//     in a short serial sweep after it;
+//     in a sweep after them, stretch by stretch, shared among the threads wherever the grains
+//     those sweeps touch do not overlap;
 //  4. the simulator adds the plate's forces, then update_grains moves the grains: those with a
 //     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
 //     advanced one by one with their total force; the others fly free, in one straight loop
-//     over all the grains that leaves the pushed ones as they are.
-// Phases 1 to 4 are shared among threads. docs/performance.md says why the loops look as
-// they do (plain LaneVec columns, no Eigen in them, selects instead of branches).
+//     over all the grains that leaves the pushed ones as they are, and the forced bits age.
+// Phases 1 to 4 are shared among threads, with nothing over all grains or contacts left to one.
+// docs/performance.md says why the loops look as they do (plain LaneVec columns, no Eigen in them,
+// selects instead of branches).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -63,7 +65,6 @@ class ForcePass {
     using Kind = PhaseProfile::Kind;
     phase_.test = profile_->phase("contacts: distance test, history carry-over", Kind::kParallel);
     phase_.forces = profile_->phase("contacts: forces and sums", Kind::kParallel);
-    phase_.late_sums = profile_->phase("contacts: late sums", Kind::kSerial);
     phase_.update = profile_->phase("grains: update", Kind::kParallel);
   }
 
@@ -89,6 +90,7 @@ class ForcePass {
     const std::uint32_t* partner = pairs.partner.data();
     found_.resize(threads_);
     std::vector<std::size_t> count(threads_ + 1, 0);  // count[t + 1]: stretch t's contacts
+    span_.assign(threads_, 0);
     const PhaseProfile::Timer timing(profile_, phase_.test);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
@@ -116,8 +118,18 @@ class ForcePass {
         for (int s = 0; s <= team; ++s) total += count[s];
         found_pair_.resize(total);
         history_.prepare_carry(total);
-      }  // (a barrier: the joined list is sized)
-      std::copy(slot, slot + touching, found_pair_.begin() + first);
+        contact_i_.resize(total);
+        contact_j_.resize(total);
+      }                       // (a barrier: the joined list is sized)
+      std::int64_t span = 0;  // a local, stored once: the threads' slots share a cache line
+      for (std::size_t c = first; c < first + touching; ++c) {
+        const std::uint32_t k = slot[c - first];
+        found_pair_[c] = k;
+        contact_i_[c] = row[k];
+        contact_j_[c] = partner[k];
+        span = std::max(span, contact_j_[c] - contact_i_[c]);
+      }
+      span_[t] = span;
       history_.carry(found_pair_, first, first + touching);
     }
     history_.finish_carry(found_pair_);
@@ -128,18 +140,11 @@ class ForcePass {
   // or the number of contacts if none.
   [[gnu::flatten]]  // the contact law and geometry inlined into the loop
   std::size_t
-  evaluate_contacts(const Law& law, const Particles<D>& p, const PairList& pairs,
-                    const std::vector<std::uint32_t>& pair_row, const Space& space,
-                    const Sums& target) {
+  evaluate_contacts(const Law& law, const Particles<D>& p, const Space& space, const Sums& target) {
     const auto contacts = static_cast<std::int64_t>(history_.size());
     contacts_.resize(contacts);
-    contact_i_.resize(contacts);
-    contact_j_.resize(contacts);
-    const std::uint32_t* pair = history_.pairs().data();
-    const std::uint32_t* row = pair_row.data();
-    const std::uint32_t* partner = pairs.partner.data();
-    std::int64_t* grain_i = contact_i_.data();
-    std::int64_t* grain_j = contact_j_.data();
+    const std::int64_t* grain_i = contact_i_.data();
+    const std::int64_t* grain_j = contact_j_.data();
     const ContactSums sums = contact_sums(target);
     // Blocks of contacts small enough that their columns stay in the first-level cache from the
     // geometry through the law to the sums.
@@ -150,22 +155,15 @@ class ForcePass {
     later_window_.resize(threads_);
     deferred_.resize(threads_);
     bool any_too_deep = false;  // the first such contact is looked for only then
-    std::int64_t span = 0;      // the largest j - i of a contact
-    int team_used = 1;
-    std::optional<PhaseProfile::Timer> timing(std::in_place, profile_, phase_.forces);
+    // The largest j - i of a contact.
+    const std::int64_t span = *std::max_element(span_.begin(), span_.end());
+    const PhaseProfile::Timer timing(profile_, phase_.forces);
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
-#pragma omp for schedule(static) reduction(max : span)
-      for (std::int64_t c = 0; c < contacts; ++c) {
-        grain_i[c] = row[pair[c]];
-        grain_j[c] = partner[pair[c]];
-        span = std::max(span, grain_j[c] - grain_i[c]);
-      }
       // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
       // earlier stretch also touches must first have those contacts: its sums wait for the
-      // serial sweep below (few grains: the contacts are in row order, partners close by).
+      // sweeps below (few grains: the contacts are in row order, partners close by).
       const int t = team_index(), team = team_size();
-      if (t == 0) team_used = team;
       const std::int64_t begin = std::min(contacts, blocks * t / team * kBlock);
       const std::int64_t end = std::min(contacts, blocks * (t + 1) / team * kBlock);
       std::vector<std::uint8_t>& later = later_[t];
@@ -190,13 +188,18 @@ class ForcePass {
         }
       }
       deferred.resize(waiting);
+#pragma omp barrier
+      // Stretch s's waiting parts go to grains of later_window_[s] alone, after those of the
+      // stretches before it. Stretches whose windows overlap form a chain, swept in order by
+      // the thread of its first stretch; chains touch different grains, so they run side by
+      // side, and every grain still gets its parts in list order.
+      if (t > 0 && starts_chain(t))
+        for (int s = t; s < team && (s == t || !starts_chain(s)); ++s)
+          for (std::uint32_t c : deferred_[s]) {
+            if (later_[s][grain_i[c]] != 0) sums.add_i(c);
+            if (later_[s][grain_j[c]] != 0) sums.add_j(c);
+          }
     }
-    timing.emplace(profile_, phase_.late_sums);
-    for (int t = 1; t < team_used; ++t)  // the stretches in order: each grain's sums in list order
-      for (std::uint32_t c : deferred_[t]) {
-        if (later_[t][grain_i[c]] != 0) sums.add_i(c);
-        if (later_[t][grain_j[c]] != 0) sums.add_j(c);
-      }
     if (any_too_deep)
       for (std::int64_t c = 0; c < contacts; ++c) {
         const double radius_i = radius_of(p.radius(), grain_i[c]);
@@ -211,13 +214,15 @@ class ForcePass {
   // moves the others of [begin, end) (pushed[i] == 0). Returns the largest value either
   // returned. The pushed grains are listed in index order without a branch: whether a grain in
   // a jet touches another is as good as random, and one branch per grain on it mispredicts.
-  template <class Advance, class Coast>
+  // Each thread then calls look(begin, end) on its range, the last look at this pass's forced
+  // bits, and ages them for the next pass: bit 0 (a force at this pass) becomes bit 1.
+  template <class Advance, class Coast, class Look>
   [[gnu::flatten]]  // the grain update inlined into its loops
   double
-  update_grains(std::span<const std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
-                bool tethered_wall, Advance&& advance, Coast&& coast) {
+  update_grains(std::span<std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
+                bool tethered_wall, Advance&& advance, Coast&& coast, Look&& look) {
     const auto n = static_cast<std::int64_t>(kinds.size());
-    const std::uint8_t* forced = forced_bits.data();
+    std::uint8_t* forced = forced_bits.data();
     const GrainKind* kind = kinds.data();
     const unsigned tethered = tethered_wall;
     pushed_.resize(n);
@@ -234,6 +239,9 @@ class ForcePass {
       const std::int64_t begin = n * t / threads_, end = n * (t + 1) / threads_;
       for (std::int64_t i = begin; i < end; ++i)
         pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+      look(begin, end);
+      for (std::int64_t i = begin; i < end; ++i)
+        forced[i] = static_cast<std::uint8_t>((forced[i] & 1) << 1);
       std::vector<std::uint32_t>& listed = pushed_grains_[t];
       listed.resize(end - begin);
       std::int64_t count = 0;
@@ -326,11 +334,21 @@ class ForcePass {
     window = {0, 0};
     if (begin >= end) return;
     const std::int64_t first = grain_i[begin];  // no earlier contact touches a grain below
-    window = {first, std::min(n, first + span + 1)};
+    std::int64_t top = first;                   // one past the last grain flagged
     for (std::int64_t c = begin - 1; c >= 0 && grain_i[c] + span >= first; --c) {
       later[grain_i[c]] |= grain_i[c] >= first;
       later[grain_j[c]] |= grain_j[c] >= first;
+      top = std::max(top, grain_j[c] + 1);  // grain_j > grain_i
     }
+    window = {first, top};
+  }
+
+  // Whether stretch s's window of waiting grains lies beyond every earlier stretch's (stretch
+  // 0 waits for none): then its sweep need not wait for theirs.
+  bool starts_chain(int s) const {
+    std::int64_t reached = 0;
+    for (int u = 1; u < s; ++u) reached = std::max(reached, later_window_[u].second);
+    return reached <= later_window_[s].first;
   }
 
   // Adds contact c's force and torques to its two grains and flags them. Raw pointers: Eigen
@@ -372,19 +390,21 @@ class ForcePass {
   double overlap_limit_;
   PhaseProfile* profile_;
   struct {
-    int test = 0, forces = 0, late_sums = 0, update = 0;
+    int test = 0, forces = 0, update = 0;
   } phase_;
   History history_;
   Table contacts_;
   std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
   // evaluate_contacts' scratch, per thread: the grains an earlier thread's contacts touch too,
-  // and the contacts whose sums wait for the serial sweep.
+  // and the contacts whose sums wait for the sweeps.
   std::vector<std::vector<std::uint8_t>> later_;
   std::vector<std::pair<std::int64_t, std::int64_t>> later_window_;  // where later_ may be set
   std::vector<std::vector<std::uint32_t>> deferred_;
-  // find_contacts' scratch: each thread's stretch of the list, and their join.
+  // find_contacts' scratch: each thread's stretch of the list, and their join; the largest
+  // j - i of each stretch's contacts.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
+  std::vector<std::int64_t> span_;
   // update_grains' scratch: whether each grain is pushed (a force at this pass or the last), and
   // each thread's list of those that are.
   std::vector<std::uint8_t> pushed_;

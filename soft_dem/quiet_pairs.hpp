@@ -42,7 +42,6 @@ class QuietPairs {
       : threads_(threads), profile_(profile) {
     if (profile_ == nullptr) return;
     phase_classify_ = profile_->phase("quiet pairs: classify", PhaseProfile::Kind::kParallel);
-    phase_after_ = profile_->phase("quiet pairs: after pass", PhaseProfile::Kind::kSerial);
   }
 
   // The listed pairs to test (increasing pair-list indices), for the pass about to run.
@@ -195,22 +194,25 @@ class QuietPairs {
     }
   }
 
-  // After the pass's forces are summed (forced bit 0: pushed at this pass): the classification
-  // ends if a trusted grain was pushed, and ages by a pass otherwise.
-  void after_pass(std::span<const std::uint8_t> forced) {
-    const PhaseProfile::Timer timing(profile_, phase_after_);
+  // After the pass's forces are summed (forced bit 0: pushed at this pass): whether a trusted
+  // grain of [begin, end) was pushed. The threads look at ranges of their own; after_pass
+  // takes whether any was.
+  bool trusted_pushed(std::span<const std::uint8_t> forced, std::size_t begin,
+                      std::size_t end) const {
     std::uint8_t pushed = 0;
-    for (std::size_t i = 0; i < forced.size(); ++i) pushed |= trusted_[i] & forced[i];
-    age_ = (pushed & 1) != 0 ? kMaxAge : age_ + 1;
+    for (std::size_t i = begin; i < end; ++i) pushed |= trusted_[i] & forced[i];
+    return (pushed & 1) != 0;
   }
+  // The classification ends if a trusted grain was pushed, and ages by a pass otherwise.
+  void after_pass(bool trusted_pushed) { age_ = trusted_pushed ? kMaxAge : age_ + 1; }
 
  private:
   int threads_;
   PhaseProfile* profile_;
-  int phase_classify_ = 0, phase_after_ = 0;
+  int phase_classify_ = 0;
   int age_ = kMaxAge;
   std::vector<std::uint8_t> trusted_, next_;  // per grain: its pairs with trusted grains skip
-  std::vector<std::uint32_t> tested_;  // the first tested_count_ are the pairs to test
+  std::vector<std::uint32_t> tested_;         // the first tested_count_ are the pairs to test
   std::size_t tested_count_ = 0;
   std::vector<std::vector<std::uint32_t>> kept_;  // classify's scratch: each thread's kept pairs
 };

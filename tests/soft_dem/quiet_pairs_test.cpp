@@ -77,15 +77,20 @@ TEST(QuietPairs, AGrainPushedAtTheLastPassIsNotQuiet) {
   EXPECT_EQ(tested.size(), 4u + 8u);
 }
 
+// What the simulator does after a pass, on one thread: the look at every grain, then the ageing.
+void end_pass(QuietPairs<3>& quiet, const std::vector<std::uint8_t>& forced) {
+  quiet.after_pass(quiet.trusted_pushed(forced, 0, forced.size()));
+}
+
 TEST(QuietPairs, ExpiresWhenATrustedGrainIsPushed) {
   Row row(20);
   row.classify();
   std::vector<std::uint8_t> forced(row.p.size(), 0);
   forced[0] = 1;  // not trusted: the classification holds
-  row.quiet.after_pass(forced);
+  end_pass(row.quiet, forced);
   EXPECT_TRUE(row.quiet.fresh());
   forced[15] = 1;
-  row.quiet.after_pass(forced);
+  end_pass(row.quiet, forced);
   EXPECT_FALSE(row.quiet.fresh());
 }
 
@@ -93,9 +98,9 @@ TEST(QuietPairs, ExpiresAfterItsLastPassAndAtARebuild) {
   Row row(20);
   row.classify();
   const std::vector<std::uint8_t> forced(row.p.size(), 0);
-  for (int pass = 0; pass + 1 < QuietPairs<3>::kMaxAge; ++pass) row.quiet.after_pass(forced);
+  for (int pass = 0; pass + 1 < QuietPairs<3>::kMaxAge; ++pass) end_pass(row.quiet, forced);
   EXPECT_TRUE(row.quiet.fresh());
-  row.quiet.after_pass(forced);
+  end_pass(row.quiet, forced);
   EXPECT_FALSE(row.quiet.fresh());
   row.classify();
   row.quiet.expire();

@@ -71,6 +71,13 @@ TEST(Threads, Jet3dWithRollingResistanceOnThePlateIsBitIdentical) {
       3.0);
 }
 
+// Many threads on a larger jet: stretches short against the span of the pairs, whose late sums
+// chain across several stretches, and others whose late sums run side by side.
+TEST(Threads, Jet3dOnManyThreadsIsBitIdentical) {
+  expect_thread_count_invariant<3>("jet3d.ini", {"jet.grains=6000", "wall.diameter=20"}, 4.0,
+                                   {1, 5, 16});
+}
+
 TEST(Threads, PeriodicGasIsBitIdentical) {
   expect_thread_count_invariant<3>("hcs3d.ini", {"gas.grains=864", "gas.phi=0.3"}, 2.0,
                                    {1, 2, 3});  // uneven shares of the rows
