@@ -22,6 +22,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/balanced_split.hpp"
 #include "core/dim.hpp"
 #include "core/neighbour_list.hpp"
 #include "core/omp_team.hpp"
@@ -60,7 +62,14 @@ class ForcePass {
 
   // profile: where its phases' wall times go (none: not timed).
   ForcePass(int threads, double overlap_limit, PhaseProfile* profile = nullptr)
-      : threads_(threads), overlap_limit_(overlap_limit), profile_(profile) {
+      : threads_(threads),
+        overlap_limit_(overlap_limit),
+        profile_(profile),
+        split_test_(threads),
+        split_join_(threads),
+        split_contacts_(threads),
+        split_coast_(threads),
+        split_advance_(threads) {
     if (profile_ == nullptr) return;
     using Kind = PhaseProfile::Kind;
     phase_.test = profile_->phase("contacts: distance test, history carry-over", Kind::kParallel);
@@ -89,18 +98,21 @@ class ForcePass {
     const std::uint32_t* row = pair_row.data();
     const std::uint32_t* partner = pairs.partner.data();
     found_.resize(threads_);
-    std::vector<std::size_t> count(threads_ + 1, 0);  // count[t + 1]: stretch t's contacts
+    // count[t + 1]: stretch t's contacts, then where the stretch after it starts
+    std::vector<std::size_t> count(threads_ + 1, 0);
     span_.assign(threads_, 0);
     const PhaseProfile::Timer timing(profile_, phase_.test);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
     {
       const int t = team_index(), team = team_size();
-      const std::size_t begin = listed * t / team, end = listed * (t + 1) / team;
+      const auto start = std::chrono::steady_clock::now();
+      const auto [begin, end] = split_test_.share(t, team, static_cast<std::int64_t>(listed));
       std::vector<std::uint32_t>& out = found_[t];
-      if (out.size() < end - begin) out.resize(end - begin);
+      const auto length = static_cast<std::size_t>(end - begin);
+      if (out.size() < length) out.resize(length);
       std::uint32_t* slot = out.data();
       std::size_t touching = 0;
-      for (std::size_t m = begin; m < end; ++m) {
+      for (std::int64_t m = begin; m < end; ++m) {
         const std::uint32_t k = every ? static_cast<std::uint32_t>(m) : index[m];
         const std::uint32_t i = row[k], j = partner[k];
         const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
@@ -109,30 +121,37 @@ class ForcePass {
         touching += d2 < reach * reach;
       }
       count[t + 1] = touching;
+      split_test_.record(t, seconds_since(start));
 #pragma omp barrier
-      std::size_t first = 0;  // where this stretch's contacts go in the joined list
-      for (int s = 0; s <= t; ++s) first += count[s];
 #pragma omp single
       {
-        std::size_t total = 0;
-        for (int s = 0; s <= team; ++s) total += count[s];
+        for (int s = 0; s < team; ++s) count[s + 1] += count[s];  // where each stretch starts
+        const std::size_t total = count[team];
         found_pair_.resize(total);
         history_.prepare_carry(total);
         contact_i_.resize(total);
         contact_j_.resize(total);
-      }                       // (a barrier: the joined list is sized)
+      }  // (a barrier: the joined list is sized)
+      // The join and carry-over are shared anew: the contacts crowd into some stretches.
+      const auto joining = std::chrono::steady_clock::now();
+      const auto [first, last] = split_join_.share(t, team, static_cast<std::int64_t>(count[team]));
+      int s = 0;              // the stretch that found contact c
       std::int64_t span = 0;  // a local, stored once: the threads' slots share a cache line
-      for (std::size_t c = first; c < first + touching; ++c) {
-        const std::uint32_t k = slot[c - first];
+      for (std::int64_t c = first; c < last; ++c) {
+        while (c >= static_cast<std::int64_t>(count[s + 1])) ++s;
+        const std::uint32_t k = found_[s][c - count[s]];
         found_pair_[c] = k;
         contact_i_[c] = row[k];
         contact_j_[c] = partner[k];
         span = std::max(span, contact_j_[c] - contact_i_[c]);
       }
       span_[t] = span;
-      history_.carry(found_pair_, first, first + touching);
+      history_.carry(found_pair_, first, last);
+      split_join_.record(t, seconds_since(joining));
     }
     history_.finish_carry(found_pair_);
+    split_test_.rebalance();
+    split_join_.rebalance();
   }
 
   // Phases 2 and 3: each contact's force and torques, added to its grains in `sums`. Returns
@@ -149,7 +168,6 @@ class ForcePass {
     // Blocks of contacts small enough that their columns stay in the first-level cache from the
     // geometry through the law to the sums.
     constexpr std::int64_t kBlock = 32;
-    const std::int64_t blocks = (contacts + kBlock - 1) / kBlock;
     const auto n = static_cast<std::int64_t>(p.size());
     later_.resize(threads_);
     later_window_.resize(threads_);
@@ -164,18 +182,22 @@ class ForcePass {
       // earlier stretch also touches must first have those contacts: its sums wait for the
       // sweeps below (few grains: the contacts are in row order, partners close by).
       const int t = team_index(), team = team_size();
-      const std::int64_t begin = std::min(contacts, blocks * t / team * kBlock);
-      const std::int64_t end = std::min(contacts, blocks * (t + 1) / team * kBlock);
+      const auto start = std::chrono::steady_clock::now();
+      const auto [begin, end] = split_contacts_.share(t, team, contacts, kBlock);
       std::vector<std::uint8_t>& later = later_[t];
       std::vector<std::uint32_t>& deferred = deferred_[t];
-      if (t > 0) flag_later(later, later_window_[t], n, begin, end, span);
+      if (t > 0)
+        flag_later(later, later_window_[t], n, begin, end, span);
+      else
+        later_window_[0] = {0, 0};  // the first stretch waits for none
       deferred.resize(end - begin);
       std::size_t waiting = 0;
       for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
         const std::int64_t block_end = std::min(end, block_begin + kBlock);
         any_too_deep |= gather_contacts(p, space, block_begin, block_end);
         contacts_.apply(law, history_.shear(), block_begin, block_end);
-        if (t == 0) {
+        // Past the window no grain waits: contacts come in row order, and j > i.
+        if (grain_i[block_begin] >= later_window_[t].second) {
           for (std::int64_t c = block_begin; c < block_end; ++c) sums.add(c);
         } else {
           for (std::int64_t c = block_begin; c < block_end; ++c) {
@@ -188,6 +210,7 @@ class ForcePass {
         }
       }
       deferred.resize(waiting);
+      split_contacts_.record(t, seconds_since(start));
 #pragma omp barrier
       // Stretch s's waiting parts go to grains of later_window_[s] alone, after those of the
       // stretches before it. Stretches whose windows overlap form a chain, swept in order by
@@ -200,6 +223,7 @@ class ForcePass {
             if (later_[s][grain_j[c]] != 0) sums.add_j(c);
           }
     }
+    split_contacts_.rebalance();
     if (any_too_deep)
       for (std::int64_t c = 0; c < contacts; ++c) {
         const double radius_i = radius_of(p.radius(), grain_i[c]);
@@ -235,8 +259,9 @@ class ForcePass {
     {
       // Each thread flags and lists the pushed grains of its own range, in index order, and
       // moves the coasting ones.
-      const int t = team_index();
-      const std::int64_t begin = n * t / threads_, end = n * (t + 1) / threads_;
+      const int t = team_index(), team = team_size();
+      auto start = std::chrono::steady_clock::now();
+      const auto [begin, end] = split_coast_.share(t, team, n);
       for (std::int64_t i = begin; i < end; ++i)
         pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
       look(begin, end);
@@ -252,13 +277,15 @@ class ForcePass {
       listed_count[t] = count;
       // A local, stored once: the threads' slots share a cache line.
       double largest = coast(pushed, begin, end);
+      split_coast_.record(t, seconds_since(start));
       // coast stores every grain of its range, the pushed ones unchanged, and the pushed grains
       // cluster in some ranges (the impact region): the threads share out all the lists after.
 #pragma omp barrier
       std::int64_t total = 0;
       for (std::int64_t count_of : listed_count) total += count_of;
       // This thread's share of the joined lists: entry k of list s, onwards.
-      const std::int64_t first = total * t / threads_, last = total * (t + 1) / threads_;
+      start = std::chrono::steady_clock::now();
+      const auto [first, last] = split_advance_.share(t, team, total);
       std::int64_t k = first;
       int s = 0;
       for (std::int64_t m = first; m < last; ++m) {
@@ -266,7 +293,10 @@ class ForcePass {
         largest = sticky_max(largest, advance(pushed_grains_[s][k++]));
       }
       thread_largest[t] = largest;
+      split_advance_.record(t, seconds_since(start));
     }
+    split_coast_.rebalance();
+    split_advance_.rebalance();
     double largest = 0.0;
     for (double value : thread_largest) largest = sticky_max(largest, value);
     return largest;
@@ -409,6 +439,8 @@ class ForcePass {
   // each thread's list of those that are.
   std::vector<std::uint8_t> pushed_;
   std::vector<std::vector<std::uint32_t>> pushed_grains_;
+  // How each shared loop is split among the threads, balanced by the times of the last pass.
+  BalancedSplit split_test_, split_join_, split_contacts_, split_coast_, split_advance_;
 };
 
 }  // namespace granjet::dem
