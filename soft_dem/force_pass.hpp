@@ -16,7 +16,9 @@
 //     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
 //     advanced one by one with their total force; the others fly free, in one straight loop
 //     over all the grains that leaves the pushed ones as they are, and the forced bits age.
-// Phases 1 to 4 are shared among threads, with nothing over all grains or contacts left to one.
+// Phases 1 to 4 are shared among threads, with nothing over all grains or contacts left to one;
+// each shared loop is cut where the last pass's times say its threads finish together
+// (core/balanced_split.hpp), since contacts and pushed grains crowd into the impact region.
 // docs/performance.md says why the loops look as they do (plain LaneVec columns, no Eigen in them,
 // selects instead of branches).
 #pragma once

@@ -16,11 +16,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "core/balanced_split.hpp"
 #include "core/dim.hpp"
 #include "core/neighbour_list.hpp"
 #include "core/omp_team.hpp"
@@ -39,7 +41,7 @@ class QuietPairs {
   // threads: how many share the last pass over the pairs (the same list for any count);
   // profile: where its phases' wall times go (none: not timed).
   explicit QuietPairs(int threads = 1, PhaseProfile* profile = nullptr)
-      : threads_(threads), profile_(profile) {
+      : threads_(threads), profile_(profile), split_skip_(threads) {
     if (profile_ == nullptr) return;
     phase_classify_ = profile_->phase("quiet pairs: classify", PhaseProfile::Kind::kParallel);
   }
@@ -166,7 +168,10 @@ class QuietPairs {
         const double drift = 2.0 * kMaxAge * std::sqrt(double{D}) * 0x1p-52 * reach_of_x;
         // Each thread lists the kept pairs of its stretch, then copies them to their place in
         // the joined list; the first thread's place is the list's start, where it lists them.
-        const std::int64_t begin = listed * t / team, end = listed * (t + 1) / team;
+        // The stretches are cut by the last classification's times: the skip test costs
+        // little where a partner is untrusted, a distance where both are trusted.
+        const auto start = std::chrono::steady_clock::now();
+        const auto [begin, end] = split_skip_.share(t, team, listed);
         std::vector<std::uint32_t>& scratch = kept_[t];
         if (t > 0) scratch.resize(end - begin);
         std::uint32_t* kept = t > 0 ? scratch.data() : tested_.data();
@@ -181,6 +186,7 @@ class QuietPairs {
           count += !skip;
         }
         kept_count[t + 1] = count;
+        split_skip_.record(t, seconds_since(start));
 #pragma omp barrier
         std::size_t at = 0;
         for (int s = 0; s <= t; ++s) at += kept_count[s];
@@ -188,6 +194,7 @@ class QuietPairs {
       }
     }
     if (8 * quiet >= n) {
+      split_skip_.rebalance();
       std::size_t total = 0;
       for (std::size_t count : kept_count) total += count;
       tested_count_ = total;
@@ -215,6 +222,7 @@ class QuietPairs {
   std::vector<std::uint32_t> tested_;         // the first tested_count_ are the pairs to test
   std::size_t tested_count_ = 0;
   std::vector<std::vector<std::uint32_t>> kept_;  // classify's scratch: each thread's kept pairs
+  BalancedSplit split_skip_;                      // how the skip test is shared out
 };
 
 }  // namespace granjet::dem
