@@ -229,9 +229,9 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
                       return radius_of(radius, i) + radius_of(radius, j);
                     });
   }
-  pass_.find_contacts(p_, pairs_, pair_row_, quiet_.tested(), space_);
   const std::size_t first_blown =
-      pass_.evaluate_contacts(law_, p_, space_, {force_.data(), torque_.data(), forced_.data()});
+      pass_.find_and_evaluate(law_, p_, pairs_, pair_row_, quiet_.tested(), space_,
+                              {force_.data(), torque_.data(), forced_.data()});
   const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
   stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
 

@@ -1,10 +1,11 @@
 // The pair part of the soft DEM's force pass, serial or shared among run.threads, and the
-// update of the grains that ends it. The simulator runs the phases in this order:
-//  1. find_contacts: the listed pairs that touch (a distance test per pair, kept branch-free:
+// update of the grains that ends it. The simulator runs the phases in this order (1 to 3 in
+// one parallel region, find_and_evaluate; 4 in another):
+//  1. find_share: the listed pairs that touch (a distance test per pair, kept branch-free:
 //     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
 //     of varying length mispredicts), each with its grains and its history carried over
 //     (ContactHistory);
-//  2. evaluate_contacts: each contact's force and torques from its geometry and history, in
+//  2. evaluate_share: each contact's force and torques from its geometry and history, in
 //     blocks of contacts held as columns (ContactTable), two vectorised loops per block;
 //  3. ContactSums: every grain sums its contacts in list order (the rows k < i that list it,
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
@@ -28,6 +29,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -83,153 +85,46 @@ class ForcePass {
   History& history() { return history_; }
   const History& history() const { return history_; }
 
-  // Phase 1, over the listed pairs `tested` (increasing indices; soft_dem/quiet_pairs.hpp says
-  // which others cannot touch). Each thread tests a contiguous stretch of them, then copies its
-  // contacts into their place in the joined list and carries their histories over. The index
-  // of every pair is written and the count advances only for a contact: no branch. A
-  // non-finite separation counts as apart (the simulator's check reports it).
-  void find_contacts(const Particles<D>& p, const PairList& pairs,
-                     const std::vector<std::uint32_t>& pair_row,
-                     std::span<const std::uint32_t> tested, const Space& space) {
-    const std::size_t listed = tested.size();
-    // Every pair, tested[k] == k: read straight through (the loop is unswitched on this).
-    const bool every = listed == pairs.size();
-    const std::uint32_t* index = tested.data();
-    const Vec<D>* x = p.position().data();
-    const double* radius = p.radius().data();
-    const std::uint32_t* row = pair_row.data();
-    const std::uint32_t* partner = pairs.partner.data();
-    found_.resize(threads_);
-    // count[t + 1]: stretch t's contacts, then where the stretch after it starts
-    std::vector<std::size_t> count(threads_ + 1, 0);
-    span_.assign(threads_, 0);
-    const PhaseProfile::Timer timing(profile_, phase_.test);
-#pragma omp parallel num_threads(threads_) if (threads_ > 1)
-    {
-      const int t = team_index(), team = team_size();
-      const auto start = std::chrono::steady_clock::now();
-      const auto [begin, end] = split_test_.share(t, team, static_cast<std::int64_t>(listed));
-      std::vector<std::uint32_t>& out = found_[t];
-      const auto length = static_cast<std::size_t>(end - begin);
-      if (out.size() < length) out.resize(length);
-      std::uint32_t* slot = out.data();
-      std::size_t touching = 0;
-      for (std::int64_t m = begin; m < end; ++m) {
-        const std::uint32_t k = every ? static_cast<std::uint32_t>(m) : index[m];
-        const std::uint32_t i = row[k], j = partner[k];
-        const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
-        const double d2 = space.separation(x[i], x[j]).squaredNorm();
-        slot[touching] = k;
-        touching += d2 < reach * reach;
-      }
-      count[t + 1] = touching;
-      split_test_.record(t, seconds_since(start));
-#pragma omp barrier
-#pragma omp single
-      {
-        for (int s = 0; s < team; ++s) count[s + 1] += count[s];  // where each stretch starts
-        const std::size_t total = count[team];
-        found_pair_.resize(total);
-        history_.prepare_carry(total);
-        contact_i_.resize(total);
-        contact_j_.resize(total);
-      }  // (a barrier: the joined list is sized)
-      // The join and carry-over are shared anew: the contacts crowd into some stretches.
-      const auto joining = std::chrono::steady_clock::now();
-      const auto [first, last] = split_join_.share(t, team, static_cast<std::int64_t>(count[team]));
-      int s = 0;              // the stretch that found contact c
-      std::int64_t span = 0;  // a local, stored once: the threads' slots share a cache line
-      for (std::int64_t c = first; c < last; ++c) {
-        while (c >= static_cast<std::int64_t>(count[s + 1])) ++s;
-        const std::uint32_t k = found_[s][c - count[s]];
-        found_pair_[c] = k;
-        contact_i_[c] = row[k];
-        contact_j_[c] = partner[k];
-        span = std::max(span, contact_j_[c] - contact_i_[c]);
-      }
-      span_[t] = span;
-      history_.carry(found_pair_, first, last);
-      split_join_.record(t, seconds_since(joining));
-    }
-    history_.finish_carry(found_pair_);
-    split_test_.rebalance();
-    split_join_.rebalance();
-  }
-
-  // Phases 2 and 3: each contact's force and torques, added to its grains in `sums`. Returns
-  // the first contact (in list order) whose overlap is beyond the limit of the smaller radius,
-  // or the number of contacts if none.
+  // Phases 1 to 3 in one parallel region. Returns the first contact (in list order) whose
+  // overlap is beyond the limit of the smaller radius, or the number of contacts if none.
   [[gnu::flatten]]  // the contact law and geometry inlined into the loop
   std::size_t
-  evaluate_contacts(const Law& law, const Particles<D>& p, const Space& space, const Sums& target) {
-    const auto contacts = static_cast<std::int64_t>(history_.size());
-    contacts_.resize(contacts);
-    const std::int64_t* grain_i = contact_i_.data();
-    const std::int64_t* grain_j = contact_j_.data();
-    const ContactSums sums = contact_sums(target);
-    // Blocks of contacts small enough that their columns stay in the first-level cache from the
-    // geometry through the law to the sums.
-    constexpr std::int64_t kBlock = 32;
-    const auto n = static_cast<std::int64_t>(p.size());
+  find_and_evaluate(const Law& law, const Particles<D>& p, const PairList& pairs,
+                    const std::vector<std::uint32_t>& pair_row,
+                    std::span<const std::uint32_t> tested, const Space& space, const Sums& target) {
+    found_.resize(threads_);
+    span_.assign(threads_, 0);
     later_.resize(threads_);
     later_window_.resize(threads_);
     deferred_.resize(threads_);
+    // count[t + 1]: stretch t's contacts, then where the stretch after it starts
+    std::vector<std::size_t> count(threads_ + 1, 0);
+    std::int64_t contacts = 0;
+    std::int64_t span = 0;      // the largest j - i of a contact
     bool any_too_deep = false;  // the first such contact is looked for only then
-    // The largest j - i of a contact.
-    const std::int64_t span = *std::max_element(span_.begin(), span_.end());
-    const PhaseProfile::Timer timing(profile_, phase_.forces);
+    std::optional<PhaseProfile::Timer> timing(std::in_place, profile_, phase_.test);
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
-      // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
-      // earlier stretch also touches must first have those contacts: its sums wait for the
-      // sweeps below (few grains: the contacts are in row order, partners close by).
-      const int t = team_index(), team = team_size();
-      const auto start = std::chrono::steady_clock::now();
-      const auto [begin, end] = split_contacts_.share(t, team, contacts, kBlock);
-      std::vector<std::uint8_t>& later = later_[t];
-      std::vector<std::uint32_t>& deferred = deferred_[t];
-      if (t > 0)
-        flag_later(later, later_window_[t], n, begin, end, span);
-      else
-        later_window_[0] = {0, 0};  // the first stretch waits for none
-      deferred.resize(end - begin);
-      std::size_t waiting = 0;
-      for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
-        const std::int64_t block_end = std::min(end, block_begin + kBlock);
-        any_too_deep |= gather_contacts(p, space, block_begin, block_end);
-        contacts_.apply(law, history_.shear(), block_begin, block_end);
-        // Past the window no grain waits: contacts come in row order, and j > i.
-        if (grain_i[block_begin] >= later_window_[t].second) {
-          for (std::int64_t c = block_begin; c < block_end; ++c) sums.add(c);
-        } else {
-          for (std::int64_t c = block_begin; c < block_end; ++c) {
-            const bool wait_i = later[grain_i[c]] != 0, wait_j = later[grain_j[c]] != 0;
-            if (!wait_i) sums.add_i(c);
-            if (!wait_j) sums.add_j(c);
-            deferred[waiting] = static_cast<std::uint32_t>(c);
-            waiting += wait_i | wait_j;
-          }
-        }
-      }
-      deferred.resize(waiting);
-      split_contacts_.record(t, seconds_since(start));
-#pragma omp barrier
-      // Stretch s's waiting parts go to grains of later_window_[s] alone, after those of the
-      // stretches before it. Stretches whose windows overlap form a chain, swept in order by
-      // the thread of its first stretch; chains touch different grains, so they run side by
-      // side, and every grain still gets its parts in list order.
-      if (t > 0 && starts_chain(t))
-        for (int s = t; s < team && (s == t || !starts_chain(s)); ++s)
-          for (std::uint32_t c : deferred_[s]) {
-            if (later_[s][grain_i[c]] != 0) sums.add_i(c);
-            if (later_[s][grain_j[c]] != 0) sums.add_j(c);
-          }
+      find_share(p, pairs, pair_row, tested, space, count);
+#pragma omp barrier  // a single waits only at its end, and the join must be complete
+#pragma omp single
+      {
+        history_.finish_carry(found_pair_);
+        contacts = static_cast<std::int64_t>(history_.size());
+        contacts_.resize(contacts);
+        span = *std::max_element(span_.begin(), span_.end());
+        timing.emplace(profile_, phase_.forces);
+      }  // (a barrier: the contacts and their histories are joined)
+      any_too_deep |= evaluate_share(law, p, space, contact_sums(target), contacts, span);
     }
+    timing.reset();
+    split_test_.rebalance();
+    split_join_.rebalance();
     split_contacts_.rebalance();
     if (any_too_deep)
       for (std::int64_t c = 0; c < contacts; ++c) {
-        const double radius_i = radius_of(p.radius(), grain_i[c]);
-        const double radius_j = radius_of(p.radius(), grain_j[c]);
+        const double radius_i = radius_of(p.radius(), contact_i_[c]);
+        const double radius_j = radius_of(p.radius(), contact_j_[c]);
         if (contacts_.overlap(c) > overlap_limit_ * std::min(radius_i, radius_j)) return c;
       }
     return contacts;
@@ -416,6 +311,128 @@ class ForcePass {
   ContactSums contact_sums(const Sums& target) const {
     return {contact_i_.data(),     contact_j_.data(), contacts_.forces(), contacts_.torques_i(),
             contacts_.torques_j(), target.force,      target.torque,      target.forced};
+  }
+
+  // Phase 1, one thread's part, over the listed pairs `tested` (increasing indices;
+  // soft_dem/quiet_pairs.hpp says which others cannot touch). Each thread tests a contiguous
+  // stretch of them; then the threads copy the contacts into their place in the joined list and
+  // carry their histories over (finish_carry is left to the caller). The index of every pair is
+  // written and the count advances only for a contact: no branch. A non-finite separation
+  // counts as apart (the simulator's check reports it). count: the team's, zero on entry.
+  void find_share(const Particles<D>& p, const PairList& pairs,
+                  const std::vector<std::uint32_t>& pair_row, std::span<const std::uint32_t> tested,
+                  const Space& space, std::vector<std::size_t>& count) {
+    const std::size_t listed = tested.size();
+    // Every pair, tested[k] == k: read straight through (the loop is unswitched on this).
+    const bool every = listed == pairs.size();
+    const std::uint32_t* index = tested.data();
+    const Vec<D>* x = p.position().data();
+    const double* radius = p.radius().data();
+    const std::uint32_t* row = pair_row.data();
+    const std::uint32_t* partner = pairs.partner.data();
+    const int t = team_index(), team = team_size();
+    const auto start = std::chrono::steady_clock::now();
+    const auto [begin, end] = split_test_.share(t, team, static_cast<std::int64_t>(listed));
+    std::vector<std::uint32_t>& out = found_[t];
+    const auto length = static_cast<std::size_t>(end - begin);
+    if (out.size() < length) out.resize(length);
+    std::uint32_t* slot = out.data();
+    std::size_t touching = 0;
+    for (std::int64_t m = begin; m < end; ++m) {
+      const std::uint32_t k = every ? static_cast<std::uint32_t>(m) : index[m];
+      const std::uint32_t i = row[k], j = partner[k];
+      const double reach = kMono ? 2.0 * radius[0] : radius[i] + radius[j];
+      const double d2 = space.separation(x[i], x[j]).squaredNorm();
+      slot[touching] = k;
+      touching += d2 < reach * reach;
+    }
+    count[t + 1] = touching;
+    split_test_.record(t, seconds_since(start));
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int s = 0; s < team; ++s) count[s + 1] += count[s];  // where each stretch starts
+      const std::size_t total = count[team];
+      found_pair_.resize(total);
+      history_.prepare_carry(total);
+      contact_i_.resize(total);
+      contact_j_.resize(total);
+    }  // (a barrier: the joined list is sized)
+    // The join and carry-over are shared anew: the contacts crowd into some stretches.
+    const auto joining = std::chrono::steady_clock::now();
+    const auto [first, last] = split_join_.share(t, team, static_cast<std::int64_t>(count[team]));
+    int s = 0;              // the stretch that found contact c
+    std::int64_t span = 0;  // a local, stored once: the threads' slots share a cache line
+    for (std::int64_t c = first; c < last; ++c) {
+      while (c >= static_cast<std::int64_t>(count[s + 1])) ++s;
+      const std::uint32_t k = found_[s][c - count[s]];
+      found_pair_[c] = k;
+      contact_i_[c] = row[k];
+      contact_j_[c] = partner[k];
+      span = std::max(span, contact_j_[c] - contact_i_[c]);
+    }
+    span_[t] = span;
+    history_.carry(found_pair_, first, last);
+    split_join_.record(t, seconds_since(joining));
+  }
+
+  // Phases 2 and 3, one thread's part: the forces and torques of its share of the `contacts`
+  // (largest j - i: span), added to their grains through `sums`. Whether any of its contacts
+  // overlaps beyond the limit of the smaller radius.
+  bool evaluate_share(const Law& law, const Particles<D>& p, const Space& space,
+                      const ContactSums& sums, std::int64_t contacts, std::int64_t span) {
+    const std::int64_t* grain_i = contact_i_.data();
+    const std::int64_t* grain_j = contact_j_.data();
+    // Blocks of contacts small enough that their columns stay in the first-level cache from the
+    // geometry through the law to the sums.
+    constexpr std::int64_t kBlock = 32;
+    const auto n = static_cast<std::int64_t>(p.size());
+    bool too_deep = false;
+    // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
+    // earlier stretch also touches must first have those contacts: its sums wait for the
+    // sweeps below (few grains: the contacts are in row order, partners close by).
+    const int t = team_index(), team = team_size();
+    const auto start = std::chrono::steady_clock::now();
+    const auto [begin, end] = split_contacts_.share(t, team, contacts, kBlock);
+    std::vector<std::uint8_t>& later = later_[t];
+    std::vector<std::uint32_t>& deferred = deferred_[t];
+    if (t > 0)
+      flag_later(later, later_window_[t], n, begin, end, span);
+    else
+      later_window_[0] = {0, 0};  // the first stretch waits for none
+    deferred.resize(end - begin);
+    std::size_t waiting = 0;
+    for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
+      const std::int64_t block_end = std::min(end, block_begin + kBlock);
+      too_deep |= gather_contacts(p, space, block_begin, block_end);
+      contacts_.apply(law, history_.shear(), block_begin, block_end);
+      // Past the window no grain waits: contacts come in row order, and j > i.
+      if (grain_i[block_begin] >= later_window_[t].second) {
+        for (std::int64_t c = block_begin; c < block_end; ++c) sums.add(c);
+      } else {
+        for (std::int64_t c = block_begin; c < block_end; ++c) {
+          const bool wait_i = later[grain_i[c]] != 0, wait_j = later[grain_j[c]] != 0;
+          if (!wait_i) sums.add_i(c);
+          if (!wait_j) sums.add_j(c);
+          deferred[waiting] = static_cast<std::uint32_t>(c);
+          waiting += wait_i | wait_j;
+        }
+      }
+    }
+    deferred.resize(waiting);
+    split_contacts_.record(t, seconds_since(start));
+#pragma omp barrier
+    // Stretch s's waiting parts go to grains of later_window_[s] alone, after those of the
+    // stretches before it. Stretches whose windows overlap form a chain, swept in order by
+    // the thread of its first stretch; chains touch different grains, so they run side by
+    // side, and every grain still gets its parts in list order.
+    if (t > 0 && starts_chain(t))
+      for (int s = t; s < team && (s == t || !starts_chain(s)); ++s)
+        for (std::uint32_t c : deferred_[s]) {
+          if (later_[s][grain_i[c]] != 0) sums.add_i(c);
+          if (later_[s][grain_j[c]] != 0) sums.add_j(c);
+        }
+    return too_deep;
   }
 
   int threads_;
