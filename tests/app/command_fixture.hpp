@@ -43,6 +43,13 @@ class CommandTest : public ::testing::Test {
   static std::string scene(const std::string& name) {
     return std::string(GRANJET_SCENES_DIR) + "/" + name;
   }
+  // Whether h5diff finds the two files, or one object of each, the same.
+  static bool same_hdf5(const std::filesystem::path& a, const std::filesystem::path& b,
+                        const std::string& object = "") {
+    std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + a.string() + " " + b.string();
+    if (!object.empty()) cmd += " " + object + " " + object;
+    return std::system(cmd.c_str()) == 0;
+  }
   nlohmann::json summary(const std::string& name) const {
     std::ifstream in(dir_ / name);
     return nlohmann::json::parse(in);
