@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/phase_profile.hpp"
+
 namespace granjet {
 
 class BalancedSplit {
@@ -45,8 +47,10 @@ class BalancedSplit {
     if (t < static_cast<int>(seconds_.size())) seconds_[t] = seconds;
   }
 
-  // Moves the cuts halfway towards equal times, once the team's times are recorded.
-  void rebalance() {
+  // Moves the cuts halfway towards equal times, once the team's times are recorded; they are
+  // first added to `phase` of `profile` (where given) as its threads' time at work.
+  void rebalance(PhaseProfile* profile = nullptr, int phase = 0) {
+    if (profile != nullptr) profile->add_shares(phase, seconds_);
     const int team = static_cast<int>(seconds_.size());
     double total = 0.0;
     for (double s : seconds_) total += s;

@@ -16,11 +16,16 @@ nlohmann::json profile_json(const PhaseProfile& profile, double loop_seconds, in
   nlohmann::json phases = nlohmann::json::array();
   for (const PhaseProfile::Phase& p : profile.phases()) {
     if (p.calls == 0) continue;  // a phase this scene never ran (no plate, no tethers ...)
-    phases.push_back({{"name", p.name},
-                      {"kind", p.kind == Kind::kSerial ? "serial" : "parallel"},
-                      {"seconds", p.seconds},
-                      {"calls", p.calls},
-                      {"share", p.seconds * scale}});
+    nlohmann::json phase = {{"name", p.name},
+                            {"kind", p.kind == Kind::kSerial ? "serial" : "parallel"},
+                            {"seconds", p.seconds},
+                            {"calls", p.calls},
+                            {"share", p.seconds * scale}};
+    if (p.slowest_seconds > 0.0) {
+      phase["work_seconds"] = p.work_seconds;
+      phase["slowest_seconds"] = p.slowest_seconds;
+    }
+    phases.push_back(phase);
   }
   j["phases"] = phases;
   const double timed = profile.seconds(Kind::kSerial) + profile.seconds(Kind::kParallel);
@@ -42,27 +47,44 @@ std::string profile_text(const nlohmann::json& profile) {
                 profile["loop_seconds"].get<double>(), profile["threads"].get<int>(),
                 profile["threads"].get<int>() == 1 ? "" : "s");
   out << line;
-  std::snprintf(line, sizeof line, "  %-42s %8s %10s %7s %9s\n", "phase", "kind", "seconds",
-                "share", "calls");
+  std::snprintf(line, sizeof line, "  %-44s %8s %10s %7s %9s %7s %7s\n", "phase", "kind", "seconds",
+                "share", "calls", "busy", "uneven");
   out << line;
+  const auto percent = [](double part, double whole) {
+    char text[16];
+    std::snprintf(text, sizeof text, "%.1f%%", whole > 0.0 ? 100.0 * part / whole : 0.0);
+    return std::string(text);
+  };
   const auto row = [&](const std::string& name, const std::string& kind, double seconds,
-                       double share, const std::string& calls) {
-    std::snprintf(line, sizeof line, "  %-42s %8s %10.4f %6.2f%% %9s\n", name.c_str(), kind.c_str(),
-                  seconds, 100.0 * share, calls.c_str());
+                       double share, const std::string& calls, const std::string& busy,
+                       const std::string& uneven) {
+    std::snprintf(line, sizeof line, "  %-44s %8s %10.4f %6.2f%% %9s %7s %7s\n", name.c_str(),
+                  kind.c_str(), seconds, 100.0 * share, calls.c_str(), busy.c_str(),
+                  uneven.c_str());
     out << line;
   };
   const double loop = profile["loop_seconds"].get<double>();
-  for (const nlohmann::json& p : profile["phases"])
-    row(p["name"].get<std::string>(), p["kind"].get<std::string>(), p["seconds"].get<double>(),
-        p["share"].get<double>(), std::to_string(p["calls"].get<std::int64_t>()));
+  for (const nlohmann::json& p : profile["phases"]) {
+    const double seconds = p["seconds"].get<double>();
+    const bool shared = p.contains("work_seconds");
+    const double work = shared ? p["work_seconds"].get<double>() : 0.0;
+    const double slowest = shared ? p["slowest_seconds"].get<double>() : 0.0;
+    row(p["name"].get<std::string>(), p["kind"].get<std::string>(), seconds,
+        p["share"].get<double>(), std::to_string(p["calls"].get<std::int64_t>()),
+        shared ? percent(work, seconds) : "-", shared ? percent(slowest - work, seconds) : "-");
+  }
   const double untimed = profile["untimed_seconds"].get<double>();
   row("untimed (bookkeeping between phases)", "serial", untimed, loop > 0.0 ? untimed / loop : 0.0,
-      "-");
+      "-", "-", "-");
   std::snprintf(line, sizeof line,
                 "  serial share %.2f%% of the loop: no thread count runs it faster than %.3gx\n",
                 100.0 * profile["serial_share"].get<double>(),
                 profile["amdahl_limit"].get<double>());
   out << line;
+  out << "  busy: the threads' mean time on their shares of a phase's loops; uneven: the slowest\n"
+         "  share's excess over it; the rest of the phase is forks, joins, barriers and "
+         "one-thread\n"
+         "  parts\n";
   return out.str();
 }
 

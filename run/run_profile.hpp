@@ -12,7 +12,9 @@ namespace granjet {
 
 // {"loop_seconds", "threads", "phases": [{"name", "kind", "seconds", "calls", "share"}],
 //  "untimed_seconds", "serial_seconds", "serial_share", "amdahl_limit"}: shares of the loop's
-// wall time; amdahl_limit is the speed-up no thread count exceeds, 1 / serial share.
+// wall time; amdahl_limit is the speed-up no thread count exceeds, 1 / serial share. A phase
+// with shared-out loops adds "work_seconds" (its threads' mean time on their shares) and
+// "slowest_seconds" (the slowest share's), summed over its loops and calls.
 nlohmann::json profile_json(const PhaseProfile& profile, double loop_seconds, int threads);
 
 // The same as a table for the terminal and the log.

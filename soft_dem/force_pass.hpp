@@ -118,9 +118,9 @@ class ForcePass {
       any_too_deep |= evaluate_share(law, p, space, contact_sums(target), contacts, span);
     }
     timing.reset();
-    split_test_.rebalance();
-    split_join_.rebalance();
-    split_contacts_.rebalance();
+    split_test_.rebalance(profile_, phase_.test);
+    split_join_.rebalance(profile_, phase_.test);
+    split_contacts_.rebalance(profile_, phase_.forces);
     if (any_too_deep)
       for (std::int64_t c = 0; c < contacts; ++c) {
         const double radius_i = radius_of(p.radius(), contact_i_[c]);
@@ -192,8 +192,8 @@ class ForcePass {
       thread_largest[t] = largest;
       split_advance_.record(t, seconds_since(start));
     }
-    split_coast_.rebalance();
-    split_advance_.rebalance();
+    split_coast_.rebalance(profile_, phase_.update);
+    split_advance_.rebalance(profile_, phase_.update);
     double largest = 0.0;
     for (double value : thread_largest) largest = sticky_max(largest, value);
     return largest;

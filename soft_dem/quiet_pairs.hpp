@@ -194,7 +194,7 @@ class QuietPairs {
       }
     }
     if (8 * quiet >= n) {
-      split_skip_.rebalance();
+      split_skip_.rebalance(profile_, phase_classify_);
       std::size_t total = 0;
       for (std::size_t count : kept_count) total += count;
       tested_count_ = total;

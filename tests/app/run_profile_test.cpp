@@ -39,6 +39,24 @@ TEST(PhaseProfile, DisabledTimersAddNothingAndEnabledOnesAddTheirScopesWallTime)
   EXPECT_LT(profile.phases()[work].seconds, 2.0);
 }
 
+TEST(PhaseProfile, SharesGiveTheThreadsMeanAndSlowestTimeAtWork) {
+  PhaseProfile profile;
+  const int loop = profile.phase("loop", Kind::kParallel);
+  const std::vector<double> first = {0.1, 0.3}, second = {0.2, 0.2, 0.5};
+  profile.add_shares(loop, first);  // disabled: nothing
+  EXPECT_EQ(profile.phases()[loop].work_seconds, 0.0);
+  profile.enable();
+  profile.add_shares(loop, first);
+  profile.add_shares(loop, second);
+  { const PhaseProfile::Timer timing(&profile, loop); }  // a phase never run is left out
+  EXPECT_NEAR(profile.phases()[loop].work_seconds, 0.2 + 0.3, 1e-15);
+  EXPECT_NEAR(profile.phases()[loop].slowest_seconds, 0.3 + 0.5, 1e-15);
+  const nlohmann::json j = profile_json(profile, 1.0, 3);
+  ASSERT_EQ(j["phases"].size(), 1u);
+  EXPECT_NEAR(j["phases"][0]["work_seconds"].get<double>(), 0.5, 1e-15);
+  EXPECT_NEAR(j["phases"][0]["slowest_seconds"].get<double>(), 0.8, 1e-15);
+}
+
 TEST(RunProfile, SerialShareCountsSerialPhasesAndTheUntimedRest) {
   PhaseProfile profile;
   profile.enable();
@@ -60,6 +78,7 @@ TEST(RunProfile, SerialShareCountsSerialPhasesAndTheUntimedRest) {
   EXPECT_EQ(j["phases"][0]["name"], "pairs");
   EXPECT_EQ(j["phases"][0]["kind"], "parallel");
   EXPECT_EQ(j["phases"][1]["kind"], "serial");
+  EXPECT_FALSE(j["phases"][0].contains("work_seconds"));  // no shares reported
   EXPECT_NEAR(j["untimed_seconds"].get<double>(), 0.010, 1e-12);
   const double serial_seconds = profile.phases()[serial].seconds + 0.010;
   EXPECT_NEAR(j["serial_share"].get<double>(), serial_seconds / loop, 1e-12);
@@ -102,10 +121,20 @@ TEST_F(GranjetCommand, ProfileSplitsTheLoopByPhaseAndChangesNoResult) {
     EXPECT_GT(phase["calls"].get<std::int64_t>(), 0);
     timed += phase["seconds"].get<double>();
     names.push_back(phase["name"]);
+    if (phase.contains("work_seconds")) {  // the shares run inside the phase's wall time
+      EXPECT_LE(phase["work_seconds"].get<double>(), phase["slowest_seconds"].get<double>());
+      EXPECT_LE(phase["slowest_seconds"].get<double>(), phase["seconds"].get<double>());
+    }
   }
   for (const char* expected :
        {"rebuild: pair list", "contacts: forces and sums", "grains: update", "observer: frames"})
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+  for (const nlohmann::json& phase : p["phases"]) {
+    if (phase["name"] == "contacts: forces and sums") {
+      EXPECT_GT(phase["work_seconds"], 0.0);
+    }
+  }
+  EXPECT_NE(table.find("busy"), std::string::npos) << table;
   EXPECT_LE(timed, p["loop_seconds"].get<double>() * (1.0 + 1e-9));
   EXPECT_GT(p["serial_share"].get<double>(), 0.0);
   EXPECT_LE(p["serial_share"].get<double>(), 1.0);
