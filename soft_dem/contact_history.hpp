@@ -41,9 +41,14 @@ class ContactHistory {
   // every previous u_t. In three parts, so that threads can share the middle one:
   // prepare_carry(found.size()) once, carry(found, begin, end) over stretches that cover the
   // list (each a merge of its own, started by a binary search), then finish_carry(found), which
-  // hands the last pass's list back in `found`, to be reused as scratch.
+  // hands the last pass's list back in `found`, to be reused as scratch. shear() is this pass's
+  // from prepare_carry on (complete once every stretch is carried); pairs() is the last pass's
+  // until finish_carry.
   void prepare_carry(std::size_t found) {
-    if constexpr (kKeepShear) next_shear_.resize(found);
+    if constexpr (kKeepShear) {
+      shear_.swap(last_shear_);
+      shear_.resize(found);
+    }
   }
   void carry(std::span<const std::uint32_t> found, std::size_t begin, std::size_t end) {
     if constexpr (kKeepShear) {
@@ -53,14 +58,11 @@ class ContactHistory {
       for (std::size_t c = begin; c < end; ++c) {
         while (before < pair_.size() && pair_[before] < found[c]) ++before;
         const bool continues = before < pair_.size() && pair_[before] == found[c];
-        next_shear_.store(c, continues ? shear_.load(before) : LaneVec<D>::Zero());
+        shear_.store(c, continues ? last_shear_.load(before) : LaneVec<D>::Zero());
       }
     }
   }
-  void finish_carry(std::vector<std::uint32_t>& found) {
-    if constexpr (kKeepShear) shear_.swap(next_shear_);
-    pair_.swap(found);
-  }
+  void finish_carry(std::vector<std::uint32_t>& found) { pair_.swap(found); }
 
   // The u_t of listed pair k: zero unless it touched at the last evaluation.
   Vec<D> of(std::uint32_t k) const {
@@ -124,7 +126,7 @@ class ContactHistory {
  private:
   std::vector<std::uint32_t> pair_;
   Columns<D> shear_;
-  Columns<D> next_shear_;  // carry's scratch
+  Columns<D> last_shear_;  // carry's source: the last pass's u_t
 };
 
 }  // namespace granjet::dem

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -99,25 +100,21 @@ class ForcePass {
     deferred_.resize(threads_);
     // count[t + 1]: stretch t's contacts, then where the stretch after it starts
     std::vector<std::size_t> count(threads_ + 1, 0);
-    std::int64_t contacts = 0;
-    std::int64_t span = 0;      // the largest j - i of a contact
     bool any_too_deep = false;  // the first such contact is looked for only then
     std::optional<PhaseProfile::Timer> timing(std::in_place, profile_, phase_.test);
+    std::atomic<int> sized = 0;  // find_share's threads that have counted their contacts
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
-      find_share(p, pairs, pair_row, tested, space, count);
-#pragma omp barrier  // a single waits only at its end, and the join must be complete
-#pragma omp single
-      {
-        history_.finish_carry(found_pair_);
-        contacts = static_cast<std::int64_t>(history_.size());
-        contacts_.resize(contacts);
-        span = *std::max_element(span_.begin(), span_.end());
-        timing.emplace(profile_, phase_.forces);
-      }  // (a barrier: the contacts and their histories are joined)
+      find_share(p, pairs, pair_row, tested, space, count, sized);
+#pragma omp barrier  // the join and carry-over are complete
+      const auto contacts = static_cast<std::int64_t>(count[team_size()]);
+      const std::int64_t span = *std::max_element(span_.begin(), span_.end());  // largest j - i
+      if (team_index() == 0) timing.emplace(profile_, phase_.forces);
       any_too_deep |= evaluate_share(law, p, space, contact_sums(target), contacts, span);
     }
     timing.reset();
+    history_.finish_carry(found_pair_);
+    const auto contacts = static_cast<std::int64_t>(history_.size());
     split_test_.rebalance(profile_, phase_.test);
     split_join_.rebalance(profile_, phase_.test);
     split_contacts_.rebalance(profile_, phase_.forces);
@@ -318,10 +315,11 @@ class ForcePass {
   // stretch of them; then the threads copy the contacts into their place in the joined list and
   // carry their histories over (finish_carry is left to the caller). The index of every pair is
   // written and the count advances only for a contact: no branch. A non-finite separation
-  // counts as apart (the simulator's check reports it). count: the team's, zero on entry.
+  // counts as apart (the simulator's check reports it). count and sized: the team's, zero on
+  // entry; the last thread to count sizes the joined list.
   void find_share(const Particles<D>& p, const PairList& pairs,
                   const std::vector<std::uint32_t>& pair_row, std::span<const std::uint32_t> tested,
-                  const Space& space, std::vector<std::size_t>& count) {
+                  const Space& space, std::vector<std::size_t>& count, std::atomic<int>& sized) {
     const std::size_t listed = tested.size();
     // Every pair, tested[k] == k: read straight through (the loop is unswitched on this).
     const bool every = listed == pairs.size();
@@ -348,16 +346,15 @@ class ForcePass {
     }
     count[t + 1] = touching;
     split_test_.record(t, seconds_since(start));
-#pragma omp barrier
-#pragma omp single
-    {
+    on_last_arrival(sized, [&] {
       for (int s = 0; s < team; ++s) count[s + 1] += count[s];  // where each stretch starts
       const std::size_t total = count[team];
       found_pair_.resize(total);
       history_.prepare_carry(total);
       contact_i_.resize(total);
       contact_j_.resize(total);
-    }  // (a barrier: the joined list is sized)
+      contacts_.resize(total);
+    });  // the joined list is sized
     // The join and carry-over are shared anew: the contacts crowd into some stretches.
     const auto joining = std::chrono::steady_clock::now();
     const auto [first, last] = split_join_.share(t, team, static_cast<std::int64_t>(count[team]));
