@@ -9,10 +9,8 @@
 //     blocks of contacts held as columns (ContactTable), two vectorised loops per block;
 //  3. ContactSums: every grain sums its contacts in list order (the rows k < i that list it,
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
-//     the same bits. It runs inside 2, block by block, each thread over its own stretch of
-//     contacts; a grain that an earlier stretch touches too gets the later stretches' parts
-//     in a sweep after them, stretch by stretch, shared among the threads wherever the grains
-//     those sweeps touch do not overlap;
+//     the same bits. One thread runs it inside 2, block by block; a team runs it after 2, each
+//     thread for the grains of its own rows (sum_share), so no two threads write one grain;
 //  4. the simulator adds the plate's forces, then update_grains moves the grains: those with a
 //     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
 //     advanced one by one with their total force; the others fly free, in one straight loop
@@ -95,9 +93,6 @@ class ForcePass {
                     std::span<const std::uint32_t> tested, const Space& space, const Sums& target) {
     found_.resize(threads_);
     span_.assign(threads_, 0);
-    later_.resize(threads_);
-    later_window_.resize(threads_);
-    deferred_.resize(threads_);
     // count[t + 1]: stretch t's contacts, then where the stretch after it starts
     std::vector<std::size_t> count(threads_ + 1, 0);
     bool any_too_deep = false;  // the first such contact is looked for only then
@@ -244,37 +239,6 @@ class ForcePass {
     return too_deep != 0;
   }
 
-  // Flags in `later` (one byte per grain, kept zero outside `window`) the grains of contacts
-  // [begin, end) that a contact before begin touches too: those from grain_i[begin] on, which
-  // only the contacts of the span rows before it can reach (contacts come in row order).
-  void flag_later(std::vector<std::uint8_t>& later, std::pair<std::int64_t, std::int64_t>& window,
-                  std::int64_t n, std::int64_t begin, std::int64_t end, std::int64_t span) const {
-    const std::int64_t* grain_i = contact_i_.data();
-    const std::int64_t* grain_j = contact_j_.data();
-    if (static_cast<std::int64_t>(later.size()) != n)
-      later.assign(n, 0);
-    else
-      std::fill(later.begin() + window.first, later.begin() + window.second, 0);
-    window = {0, 0};
-    if (begin >= end) return;
-    const std::int64_t first = grain_i[begin];  // no earlier contact touches a grain below
-    std::int64_t top = first;                   // one past the last grain flagged
-    for (std::int64_t c = begin - 1; c >= 0 && grain_i[c] + span >= first; --c) {
-      later[grain_i[c]] |= grain_i[c] >= first;
-      later[grain_j[c]] |= grain_j[c] >= first;
-      top = std::max(top, grain_j[c] + 1);  // grain_j > grain_i
-    }
-    window = {first, top};
-  }
-
-  // Whether stretch s's window of waiting grains lies beyond every earlier stretch's (stretch
-  // 0 waits for none): then its sweep need not wait for theirs.
-  bool starts_chain(int s) const {
-    std::int64_t reached = 0;
-    for (int u = 1; u < s; ++u) reached = std::max(reached, later_window_[u].second);
-    return reached <= later_window_[s].first;
-  }
-
   // Adds contact c's force and torques to its two grains and flags them. Raw pointers: Eigen
   // stores through may-alias vector types, after which a pointer read from a member would have
   // to be read again.
@@ -378,58 +342,58 @@ class ForcePass {
   // overlaps beyond the limit of the smaller radius.
   bool evaluate_share(const Law& law, const Particles<D>& p, const Space& space,
                       const ContactSums& sums, std::int64_t contacts, std::int64_t span) {
-    const std::int64_t* grain_i = contact_i_.data();
-    const std::int64_t* grain_j = contact_j_.data();
     // Blocks of contacts small enough that their columns stay in the first-level cache from the
     // geometry through the law to the sums.
     constexpr std::int64_t kBlock = 32;
-    const auto n = static_cast<std::int64_t>(p.size());
     bool too_deep = false;
-    // Each thread sums its own stretch of blocks as it goes, in list order. A grain that an
-    // earlier stretch also touches must first have those contacts: its sums wait for the
-    // sweeps below (few grains: the contacts are in row order, partners close by).
     const int t = team_index(), team = team_size();
-    const auto start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now();
     const auto [begin, end] = split_contacts_.share(t, team, contacts, kBlock);
-    std::vector<std::uint8_t>& later = later_[t];
-    std::vector<std::uint32_t>& deferred = deferred_[t];
-    if (t > 0)
-      flag_later(later, later_window_[t], n, begin, end, span);
-    else
-      later_window_[0] = {0, 0};  // the first stretch waits for none
-    deferred.resize(end - begin);
-    std::size_t waiting = 0;
     for (std::int64_t block_begin = begin; block_begin < end; block_begin += kBlock) {
       const std::int64_t block_end = std::min(end, block_begin + kBlock);
       too_deep |= gather_contacts(p, space, block_begin, block_end);
       contacts_.apply(law, history_.shear(), block_begin, block_end);
-      // Past the window no grain waits: contacts come in row order, and j > i.
-      if (grain_i[block_begin] >= later_window_[t].second) {
+      // Alone, the thread sums each block as it goes: that is list order.
+      if (team == 1)
         for (std::int64_t c = block_begin; c < block_end; ++c) sums.add(c);
-      } else {
-        for (std::int64_t c = block_begin; c < block_end; ++c) {
-          const bool wait_i = later[grain_i[c]] != 0, wait_j = later[grain_j[c]] != 0;
-          if (!wait_i) sums.add_i(c);
-          if (!wait_j) sums.add_j(c);
-          deferred[waiting] = static_cast<std::uint32_t>(c);
-          waiting += wait_i | wait_j;
-        }
-      }
     }
-    deferred.resize(waiting);
-    split_contacts_.record(t, seconds_since(start));
+    double seconds = seconds_since(start);
+    if (team > 1) {
 #pragma omp barrier
-    // Stretch s's waiting parts go to grains of later_window_[s] alone, after those of the
-    // stretches before it. Stretches whose windows overlap form a chain, swept in order by
-    // the thread of its first stretch; chains touch different grains, so they run side by
-    // side, and every grain still gets its parts in list order.
-    if (t > 0 && starts_chain(t))
-      for (int s = t; s < team && (s == t || !starts_chain(s)); ++s)
-        for (std::uint32_t c : deferred_[s]) {
-          if (later_[s][grain_i[c]] != 0) sums.add_i(c);
-          if (later_[s][grain_j[c]] != 0) sums.add_j(c);
-        }
+      start = std::chrono::steady_clock::now();
+      sum_share(sums, t, team, static_cast<std::int64_t>(p.size()), contacts, span, kBlock);
+      seconds += seconds_since(start);
+    }
+    split_contacts_.record(t, seconds);
     return too_deep;
+  }
+
+  // Phase 3 among threads, one thread's part: the sums of the grains it owns, those from the
+  // first row of its stretch of contacts to the first row of the next (the grains whose own rows
+  // it evaluated, so mostly its own contacts' results). Each grain's parts come in list order:
+  // the thread walks the contacts that can reach its grains, those of the span rows before
+  // them and of their own rows, in order, and takes the part of each grain of its own.
+  void sum_share(const ContactSums& sums, int t, int team, std::int64_t n, std::int64_t contacts,
+                 std::int64_t span, std::int64_t block) const {
+    const std::int64_t* grain_i = contact_i_.data();
+    const std::int64_t* grain_j = contact_j_.data();
+    const auto first_grain = [&](int s) -> std::int64_t {  // of thread s
+      if (s == 0) return 0;
+      if (s == team) return n;
+      const std::int64_t c = split_contacts_.share(s, team, contacts, block).first;
+      return c < contacts ? grain_i[c] : n;
+    };
+    const std::int64_t own_begin = first_grain(t), own_end = first_grain(t + 1);
+    if (own_begin >= own_end) return;
+    // Contacts come in row order, and j - i <= span.
+    const std::int64_t c_begin =
+        std::lower_bound(grain_i, grain_i + contacts, own_begin - span) - grain_i;
+    const std::int64_t c_end = std::lower_bound(grain_i, grain_i + contacts, own_end) - grain_i;
+    for (std::int64_t c = c_begin; c < c_end; ++c) {
+      if (grain_i[c] >= own_begin) sums.add_i(c);
+      const std::int64_t j = grain_j[c];
+      if (j >= own_begin && j < own_end) sums.add_j(c);
+    }
   }
 
   int threads_;
@@ -441,11 +405,6 @@ class ForcePass {
   History history_;
   Table contacts_;
   std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
-  // evaluate_contacts' scratch, per thread: the grains an earlier thread's contacts touch too,
-  // and the contacts whose sums wait for the sweeps.
-  std::vector<std::vector<std::uint8_t>> later_;
-  std::vector<std::pair<std::int64_t, std::int64_t>> later_window_;  // where later_ may be set
-  std::vector<std::vector<std::uint32_t>> deferred_;
   // find_contacts' scratch: each thread's stretch of the list, and their join; the largest
   // j - i of each stretch's contacts.
   std::vector<std::vector<std::uint32_t>> found_;
