@@ -71,8 +71,9 @@ TEST(Threads, Jet3dWithRollingResistanceOnThePlateIsBitIdentical) {
       3.0);
 }
 
-// Many threads on a larger jet: stretches short against the span of the pairs, whose late sums
-// chain across several stretches, and others whose late sums run side by side.
+// Many threads on a larger jet: stretches short against the span of the pairs, so that a
+// stretch's contacts reach the grains of several later threads, and threads left without
+// contacts before the impact.
 TEST(Threads, Jet3dOnManyThreadsIsBitIdentical) {
   expect_thread_count_invariant<3>("jet3d.ini", {"jet.grains=6000", "wall.diameter=20"}, 4.0,
                                    {1, 5, 16});
