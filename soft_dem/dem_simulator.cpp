@@ -210,18 +210,14 @@ auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotatio
           inv_inertia_.data(),  dt_};
 }
 
-// The whole pass (the phases of force_pass.hpp): the tethers, the pairs, the plate, then each
-// grain's update. force_ and torque_ must be zero on entry.
+// The whole pass (the phases of force_pass.hpp): the quiet pairs' classification where due,
+// then in one parallel region the tethers, the pairs, the plate and each grain's update.
+// force_ and torque_ must be zero on entry.
 template <int D, class Law, bool kMono, class Space>
 template <class Advance, class Coast>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
 double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
-  if (tethered_) {
-    const PhaseProfile::Timer tethering = timer(phase_.tethers);
-    wall_.add_forces(
-        p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_), threads_);
-  }
   if (!quiet_.fresh()) {
     const auto radius = p_.radius();
     quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
@@ -229,49 +225,62 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
                       return radius_of(radius, i) + radius_of(radius, j);
                     });
   }
-  const std::size_t first_blown =
-      pass_.find_and_evaluate(law_, p_, pairs_, pair_row_, quiet_.tested(), space_,
-                              {force_.data(), torque_.data(), forced_.data()});
-  const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
-  stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
-
+  const auto tether_forces = [&] {
+    if (!tethered_) return;
+    std::optional<PhaseProfile::Timer> tethering;
+    if (team_index() == 0) tethering.emplace(&this->profile(), phase_.tethers);
+    wall_.add_forces_share(
+        p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+  };
   const auto n = static_cast<std::int64_t>(p_.size());
-  std::int64_t first_blown_on_plate = n;
-  if (plate_) {  // after the contacts: the same sum order for any thread count
+  // The plate's forces, after the contacts': the same sum order for any thread count. Each
+  // thread keeps the first grain too deep in its share.
+  std::vector<std::int64_t> first_blown_on_plate(threads_, n);
+  const auto plate_forces = [&] {
+    if (!plate_) return;
     using Touch = typename Plate<D, WallLaw>::Touch;
     const auto x = p_.position();
     const auto v = p_.velocity();
     const auto w = p_.spin();
     const auto radius = p_.radius();
     std::uint8_t* forced = forced_.data();
-    const PhaseProfile::Timer plating = timer(phase_.plate);
-#pragma omp parallel for num_threads(threads_) reduction(min \
-                                                         : first_blown_on_plate) if (threads_ > 1)
+    std::optional<PhaseProfile::Timer> plating;
+    if (team_index() == 0) plating.emplace(&this->profile(), phase_.plate);
+    std::int64_t first_blown = n;
+#pragma omp for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
       const Touch touch = plate_->add_force(i, x[i], radius_of(radius, i), v[i], w[i],
                                             overlap_limit_, force_[i], torque_[i]);
       if (touch != Touch::kApart) forced[i] |= 1;
-      if (touch == Touch::kTooDeep) first_blown_on_plate = std::min(first_blown_on_plate, i);
-    }
-  }
+      if (touch == Touch::kTooDeep) first_blown = std::min(first_blown, i);
+    }  // (a barrier: every grain has its plate force)
+    first_blown_on_plate[team_index()] = first_blown;
+  };
   std::atomic<bool> trusted_pushed = false;
-  const double largest = pass_.update_grains(
-      forced_, p_.kind(), tethered_, advance, coast, [&](std::size_t begin, std::size_t end) {
-        if (quiet_.trusted_pushed(forced_, begin, end))
-          trusted_pushed.store(true, std::memory_order_relaxed);
-      });
+  const typename Pass::Outcome outcome =
+      pass_.pass(law_, p_, pairs_, pair_row_, quiet_.tested(), space_,
+                 {force_.data(), torque_.data(), forced_.data()}, tether_forces, plate_forces,
+                 p_.kind(), tethered_, advance, coast, [&](std::size_t begin, std::size_t end) {
+                   if (quiet_.trusted_pushed(forced_, begin, end))
+                     trusted_pushed.store(true, std::memory_order_relaxed);
+                 });
+  const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
+  stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
   quiet_.after_pass(trusted_pushed.load(std::memory_order_relaxed));
+  const std::size_t first_blown = outcome.first_too_deep;
+  const std::int64_t plate_blown =
+      *std::min_element(first_blown_on_plate.begin(), first_blown_on_plate.end());
   // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
   // row i + 1); the state it integrated is lost anyway.
   if (first_blown < contact_pair.size()) {
     const std::uint32_t k = contact_pair[first_blown];
-    if (pair_row_[k] <= first_blown_on_plate) throw_overlap(pair_row_[k], pairs_.partner[k]);
+    if (pair_row_[k] <= plate_blown) throw_overlap(pair_row_[k], pairs_.partner[k]);
   }
-  if (first_blown_on_plate < n) throw_overlap(first_blown_on_plate, first_blown_on_plate);
+  if (plate_blown < n) throw_overlap(plate_blown, plate_blown);
   // advance zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
   if constexpr (kRotation) torque_.swap(torque_prev_);
-  return largest;
+  return outcome.largest;
 }
 
 template <int D, class Law, bool kMono, class Space>

@@ -114,7 +114,7 @@ class DemSimulator final : public Simulator<D> {
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
   // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see
-  // ForcePass::update_grains).
+  // ForcePass::pass).
   std::vector<std::uint8_t> forced_;
   static constexpr std::uint32_t kRemoved = UINT32_MAX;
   std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region

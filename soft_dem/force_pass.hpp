@@ -1,6 +1,5 @@
 // The pair part of the soft DEM's force pass, serial or shared among run.threads, and the
-// update of the grains that ends it. The simulator runs the phases in this order (1 to 3 in
-// one parallel region, find_and_evaluate; 4 in another):
+// update of the grains that ends it, in this order and in one parallel region (pass):
 //  1. find_share: the listed pairs that touch (a distance test per pair, kept branch-free:
 //     only ~5% of the pairs of a touching lattice overlap, and a branch per pair or per row
 //     of varying length mispredicts), each with its grains and its history carried over
@@ -11,7 +10,7 @@
 //     then its own row), one fixed order whatever the thread count, so the same roundings and
 //     the same bits. One thread runs it inside 2, block by block; a team runs it after 2, each
 //     thread for the grains of its own rows (sum_share), so no two threads write one grain;
-//  4. the simulator adds the plate's forces, then update_grains moves the grains: those with a
+//  4. the simulator adds the plate's forces, then update_share moves the grains: those with a
 //     force at this pass or the last (contacts, plate, tether; `forced` flags) are listed and
 //     advanced one by one with their total force; the others fly free, in one straight loop
 //     over all the grains that leaves the pushed ones as they are, and the forced bits age.
@@ -84,111 +83,80 @@ class ForcePass {
   History& history() { return history_; }
   const History& history() const { return history_; }
 
-  // Phases 1 to 3 in one parallel region. Returns the first contact (in list order) whose
-  // overlap is beyond the limit of the smaller radius, or the number of contacts if none.
-  [[gnu::flatten]]  // the contact law and geometry inlined into the loop
-  std::size_t
-  find_and_evaluate(const Law& law, const Particles<D>& p, const PairList& pairs,
-                    const std::vector<std::uint32_t>& pair_row,
-                    std::span<const std::uint32_t> tested, const Space& space, const Sums& target) {
+  // What a pass found: the first contact (in list order) whose overlap is beyond the limit of
+  // the smaller radius (the number of contacts if none), and the largest value that advance or
+  // coast returned.
+  struct Outcome {
+    std::size_t first_too_deep;
+    double largest;
+  };
+
+  // Phases 1 to 4 in one parallel region. Every thread of the team runs before() at its start,
+  // ahead of the contacts' sums (the tether forces), and between() once every grain has its
+  // contacts' forces, before the update (the plate's forces); each hook may hold worksharing
+  // loops, each ending in a barrier. Phase 4: the grains with a force at this pass
+  // or the last (target.forced bits, or a tethered wall grain, which feels its springs) are
+  // pushed: advance(i) for each; coast(pushed, begin, end) moves the others of [begin, end)
+  // (pushed[i] == 0). Each thread calls look(begin, end) on its range of grains, the last look
+  // at this pass's forced bits, before they age for the next pass: bit 0 (a force at this
+  // pass) becomes bit 1.
+  template <class Before, class Between, class Advance, class Coast, class Look>
+  [[gnu::flatten]]  // the contact law, the geometry and the grain update inlined into the loops
+  Outcome
+  pass(const Law& law, const Particles<D>& p, const PairList& pairs,
+       const std::vector<std::uint32_t>& pair_row, std::span<const std::uint32_t> tested,
+       const Space& space, const Sums& target, Before&& before, Between&& between,
+       std::span<const GrainKind> kinds, bool tethered_wall, Advance&& advance, Coast&& coast,
+       Look&& look) {
     found_.resize(threads_);
     span_.assign(threads_, 0);
+    pushed_.resize(kinds.size());
+    pushed_grains_.resize(threads_);
     // count[t + 1]: stretch t's contacts, then where the stretch after it starts
     std::vector<std::size_t> count(threads_ + 1, 0);
+    std::vector<std::int64_t> pushed_count(threads_, 0);
+    std::vector<double> thread_largest(threads_, 0.0);
     bool any_too_deep = false;  // the first such contact is looked for only then
     std::optional<PhaseProfile::Timer> timing(std::in_place, profile_, phase_.test);
     std::atomic<int> sized = 0;  // find_share's threads that have counted their contacts
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
+      const int t = team_index();
+      if (t == 0) timing.reset();
+      before();
+      if (t == 0) timing.emplace(profile_, phase_.test);
       find_share(p, pairs, pair_row, tested, space, count, sized);
 #pragma omp barrier  // the join and carry-over are complete
       const auto contacts = static_cast<std::int64_t>(count[team_size()]);
       const std::int64_t span = *std::max_element(span_.begin(), span_.end());  // largest j - i
-      if (team_index() == 0) timing.emplace(profile_, phase_.forces);
+      if (t == 0) timing.emplace(profile_, phase_.forces);
       any_too_deep |= evaluate_share(law, p, space, contact_sums(target), contacts, span);
+#pragma omp barrier  // every grain has its contacts' forces
+      if (t == 0) timing.reset();
+      between();
+      if (t == 0) timing.emplace(profile_, phase_.update);
+      thread_largest[t] =
+          update_share(target.forced, kinds, tethered_wall, pushed_count, advance, coast, look);
     }
     timing.reset();
     history_.finish_carry(found_pair_);
-    const auto contacts = static_cast<std::int64_t>(history_.size());
     split_test_.rebalance(profile_, phase_.test);
     split_join_.rebalance(profile_, phase_.test);
     split_contacts_.rebalance(profile_, phase_.forces);
-    if (any_too_deep)
-      for (std::int64_t c = 0; c < contacts; ++c) {
-        const double radius_i = radius_of(p.radius(), contact_i_[c]);
-        const double radius_j = radius_of(p.radius(), contact_j_[c]);
-        if (contacts_.overlap(c) > overlap_limit_ * std::min(radius_i, radius_j)) return c;
-      }
-    return contacts;
-  }
-
-  // Phase 4: the grains with a force at this pass or the last (forced bits, or a tethered wall
-  // grain, which feels its springs) are pushed: advance(i) for each; coast(pushed, begin, end)
-  // moves the others of [begin, end) (pushed[i] == 0). Returns the largest value either
-  // returned. The pushed grains are listed in index order without a branch: whether a grain in
-  // a jet touches another is as good as random, and one branch per grain on it mispredicts.
-  // Each thread then calls look(begin, end) on its range, the last look at this pass's forced
-  // bits, and ages them for the next pass: bit 0 (a force at this pass) becomes bit 1.
-  template <class Advance, class Coast, class Look>
-  [[gnu::flatten]]  // the grain update inlined into its loops
-  double
-  update_grains(std::span<std::uint8_t> forced_bits, std::span<const GrainKind> kinds,
-                bool tethered_wall, Advance&& advance, Coast&& coast, Look&& look) {
-    const auto n = static_cast<std::int64_t>(kinds.size());
-    std::uint8_t* forced = forced_bits.data();
-    const GrainKind* kind = kinds.data();
-    const unsigned tethered = tethered_wall;
-    pushed_.resize(n);
-    pushed_grains_.resize(threads_);
-    std::vector<std::int64_t> listed_count(threads_, 0);
-    std::uint8_t* pushed = pushed_.data();
-    std::vector<double> thread_largest(threads_, 0.0);
-    const PhaseProfile::Timer timing(profile_, phase_.update);
-#pragma omp parallel num_threads(threads_) if (threads_ > 1)
-    {
-      // Each thread flags and lists the pushed grains of its own range, in index order, and
-      // moves the coasting ones.
-      const int t = team_index(), team = team_size();
-      auto start = std::chrono::steady_clock::now();
-      const auto [begin, end] = split_coast_.share(t, team, n);
-      for (std::int64_t i = begin; i < end; ++i)
-        pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
-      look(begin, end);
-      for (std::int64_t i = begin; i < end; ++i)
-        forced[i] = static_cast<std::uint8_t>((forced[i] & 1) << 1);
-      std::vector<std::uint32_t>& listed = pushed_grains_[t];
-      listed.resize(end - begin);
-      std::int64_t count = 0;
-      for (std::int64_t i = begin; i < end; ++i) {
-        listed[count] = static_cast<std::uint32_t>(i);
-        count += pushed[i];
-      }
-      listed_count[t] = count;
-      // A local, stored once: the threads' slots share a cache line.
-      double largest = coast(pushed, begin, end);
-      split_coast_.record(t, seconds_since(start));
-      // coast stores every grain of its range, the pushed ones unchanged, and the pushed grains
-      // cluster in some ranges (the impact region): the threads share out all the lists after.
-#pragma omp barrier
-      std::int64_t total = 0;
-      for (std::int64_t count_of : listed_count) total += count_of;
-      // This thread's share of the joined lists: entry k of list s, onwards.
-      start = std::chrono::steady_clock::now();
-      const auto [first, last] = split_advance_.share(t, team, total);
-      std::int64_t k = first;
-      int s = 0;
-      for (std::int64_t m = first; m < last; ++m) {
-        while (k >= listed_count[s]) k -= listed_count[s++];
-        largest = sticky_max(largest, advance(pushed_grains_[s][k++]));
-      }
-      thread_largest[t] = largest;
-      split_advance_.record(t, seconds_since(start));
-    }
     split_coast_.rebalance(profile_, phase_.update);
     split_advance_.rebalance(profile_, phase_.update);
-    double largest = 0.0;
-    for (double value : thread_largest) largest = sticky_max(largest, value);
-    return largest;
+    Outcome outcome{history_.size(), 0.0};
+    for (double value : thread_largest) outcome.largest = sticky_max(outcome.largest, value);
+    if (any_too_deep)
+      for (std::size_t c = 0; c < history_.size(); ++c) {
+        const double radius_i = radius_of(p.radius(), contact_i_[c]);
+        const double radius_j = radius_of(p.radius(), contact_j_[c]);
+        if (contacts_.overlap(c) > overlap_limit_ * std::min(radius_i, radius_j)) {
+          outcome.first_too_deep = c;
+          break;
+        }
+      }
+    return outcome;
   }
 
  private:
@@ -396,6 +364,55 @@ class ForcePass {
     }
   }
 
+  // Phase 4, one thread's part (see pass): returns the largest value advance or coast returned.
+  // Each thread flags and lists the pushed grains of its own range, in index order, without a
+  // branch (whether a grain in a jet touches another is as good as random, and one branch per
+  // grain on it mispredicts), and moves the coasting ones; then the threads share out all the
+  // lists. pushed_count: the team's, one slot per thread.
+  template <class Advance, class Coast, class Look>
+  double update_share(std::uint8_t* forced, std::span<const GrainKind> kinds, bool tethered_wall,
+                      std::vector<std::int64_t>& pushed_count, Advance&& advance, Coast&& coast,
+                      Look&& look) {
+    const auto n = static_cast<std::int64_t>(kinds.size());
+    const GrainKind* kind = kinds.data();
+    const unsigned tethered = tethered_wall;
+    std::uint8_t* pushed = pushed_.data();
+    const int t = team_index(), team = team_size();
+    auto start = std::chrono::steady_clock::now();
+    const auto [begin, end] = split_coast_.share(t, team, n);
+    for (std::int64_t i = begin; i < end; ++i)
+      pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
+    look(begin, end);
+    for (std::int64_t i = begin; i < end; ++i)
+      forced[i] = static_cast<std::uint8_t>((forced[i] & 1) << 1);
+    std::vector<std::uint32_t>& listed = pushed_grains_[t];
+    listed.resize(end - begin);
+    std::int64_t count = 0;
+    for (std::int64_t i = begin; i < end; ++i) {
+      listed[count] = static_cast<std::uint32_t>(i);
+      count += pushed[i];
+    }
+    pushed_count[t] = count;
+    double largest = coast(pushed, begin, end);
+    split_coast_.record(t, seconds_since(start));
+    // coast stores every grain of its range, the pushed ones unchanged, and the pushed grains
+    // cluster in some ranges (the impact region): the threads share out all the lists after.
+#pragma omp barrier
+    std::int64_t total = 0;
+    for (std::int64_t count_of : pushed_count) total += count_of;
+    // This thread's share of the joined lists: entry k of list s, onwards.
+    start = std::chrono::steady_clock::now();
+    const auto [first, last] = split_advance_.share(t, team, total);
+    std::int64_t k = first;
+    int s = 0;
+    for (std::int64_t m = first; m < last; ++m) {
+      while (k >= pushed_count[s]) k -= pushed_count[s++];
+      largest = sticky_max(largest, advance(pushed_grains_[s][k++]));
+    }
+    split_advance_.record(t, seconds_since(start));
+    return largest;
+  }
+
   int threads_;
   double overlap_limit_;
   PhaseProfile* profile_;
@@ -405,12 +422,12 @@ class ForcePass {
   History history_;
   Table contacts_;
   std::vector<std::int64_t> contact_i_, contact_j_;  // the grains, 64-bit: vectorised gathers
-  // find_contacts' scratch: each thread's stretch of the list, and their join; the largest
+  // find_share's scratch: each thread's stretch of the list, and their join; the largest
   // j - i of each stretch's contacts.
   std::vector<std::vector<std::uint32_t>> found_;
   std::vector<std::uint32_t> found_pair_;
   std::vector<std::int64_t> span_;
-  // update_grains' scratch: whether each grain is pushed (a force at this pass or the last), and
+  // update_share's scratch: whether each grain is pushed (a force at this pass or the last), and
   // each thread's list of those that are.
   std::vector<std::uint8_t> pushed_;
   std::vector<std::vector<std::uint32_t>> pushed_grains_;

@@ -46,36 +46,40 @@ class TetheredWall {
   template <class IndexOf>
   void add_forces(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force,
                   int threads = 1) const {
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    add_forces_share(p, index_of, force);
+  }
+
+  // The same from inside a parallel region, on every thread of its team (two worksharing
+  // loops, each ending in a barrier).
+  template <class IndexOf>
+  void add_forces_share(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force) const {
     const auto x = p.position();
     const auto v = p.velocity();
     const auto bonds = static_cast<std::int64_t>(bonds_.size());
     const auto anchors = static_cast<std::int64_t>(anchors_.size());
-    bond_force_.resize(bonds);
-#pragma omp parallel num_threads(threads) if (threads > 1)
-    {
 #pragma omp for schedule(static)
-      for (std::int64_t k = 0; k < bonds; ++k) {  // the force on the bond's first grain
-        const Bond& b = bonds_[k];
-        const std::size_t i = index_of(b.i), j = index_of(b.j);
-        const Vec<D> r = x[i] - x[j];
-        const double dist = r.norm();
-        const Vec<D> n = r / dist;
-        const double f = -spring_ * (dist - b.rest) - damping_ * (v[i] - v[j]).dot(n);
-        bond_force_[k] = f * n;
-      }
+    for (std::int64_t k = 0; k < bonds; ++k) {  // the force on the bond's first grain
+      const Bond& b = bonds_[k];
+      const std::size_t i = index_of(b.i), j = index_of(b.j);
+      const Vec<D> r = x[i] - x[j];
+      const double dist = r.norm();
+      const Vec<D> n = r / dist;
+      const double f = -spring_ * (dist - b.rest) - damping_ * (v[i] - v[j]).dot(n);
+      bond_force_[k] = f * n;
+    }
 #pragma omp for schedule(static)
-      for (std::int64_t a = 0; a < anchors; ++a) {
-        const std::size_t i = index_of(anchors_[a].id);
-        Vec<D> sum = force[i] - (spring_ * (x[i] - anchors_[a].position) + damping_ * v[i]);
-        for (std::uint32_t m = bonds_of_first_[a]; m < bonds_of_first_[a + 1]; ++m) {
-          const std::int64_t signed_bond = bonds_of_[m];  // k + 1 for a first grain, -(k + 1)
-          if (signed_bond > 0)
-            sum += bond_force_[signed_bond - 1];
-          else
-            sum -= bond_force_[-signed_bond - 1];
-        }
-        force[i] = sum;
+    for (std::int64_t a = 0; a < anchors; ++a) {
+      const std::size_t i = index_of(anchors_[a].id);
+      Vec<D> sum = force[i] - (spring_ * (x[i] - anchors_[a].position) + damping_ * v[i]);
+      for (std::uint32_t m = bonds_of_first_[a]; m < bonds_of_first_[a + 1]; ++m) {
+        const std::int64_t signed_bond = bonds_of_[m];  // k + 1 for a first grain, -(k + 1)
+        if (signed_bond > 0)
+          sum += bond_force_[signed_bond - 1];
+        else
+          sum -= bond_force_[-signed_bond - 1];
       }
+      force[i] = sum;
     }
   }
 
@@ -113,6 +117,7 @@ class TetheredWall {
       bonds_of_.insert(bonds_of_.end(), list.begin(), list.end());
       bonds_of_first_.push_back(static_cast<std::uint32_t>(bonds_of_.size()));
     }
+    bond_force_.resize(bonds_.size());
   }
 
   struct Anchor {
@@ -167,7 +172,7 @@ class TetheredWall {
   std::vector<std::uint32_t> bonds_of_first_{0};
   std::vector<std::int64_t> bonds_of_;
   mutable std::vector<Vec<D>>
-      bond_force_;  // add_forces' scratch: each bond's force on its first grain
+      bond_force_;  // add_forces_share's scratch: each bond's force on its first grain
 };
 
 }  // namespace granjet::dem
