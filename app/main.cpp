@@ -10,6 +10,7 @@
 #include "app/compare_command.hpp"
 #include "app/info_command.hpp"
 #include "campaign/child_process.hpp"
+#include "campaign/mpi_world.hpp"
 #include "core/errors.hpp"
 #include "run/backend_factory.hpp"
 #include "run/failure_report.hpp"
@@ -130,6 +131,25 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   return vm;
 }
 
+// Started by mpirun -n K with K > 1, `run`, `resume` and `compare` refuse before they write:
+// one run is not spread over ranks, and every rank would run the whole scene into the same
+// files.
+void refuse_several_ranks(const std::string& command, const std::string& backend) {
+  const int ranks = granjet::launched_ranks();
+  if (ranks <= 1) return;
+  const std::string why =
+      backend == "event_driven"
+          ? " runs as one process: the event-driven backend handles the collisions one at a time "
+            "in one global order of time, which ranks could share only through a parallel event "
+            "calendar (docs/event_driven.md)"
+          : " runs as one process: one run is not spread over ranks, and every rank would run "
+            "the whole scene into the same files";
+  throw granjet::InputError("mpirun -n " + std::to_string(ranks),
+                            "granjet " + command + why +
+                                ". Run it without mpirun (run.threads = N shares one machine's "
+                                "cores), or spread many runs with mpirun -n K granjet campaign");
+}
+
 int run(const std::vector<std::string>& args) {
   granjet::RunOptions o;
   po::options_description desc;
@@ -146,6 +166,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("seeds")) o.seeds = granjet::parse_seeds(vm["seeds"].as<std::string>(), "--seeds");
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
+  refuse_several_ranks("run", o.backend);
   return granjet::run_command(o, std::cout);
 }
 
@@ -161,6 +182,7 @@ int resume(const std::vector<std::string>& args) {
   o.log = !vm["no-log"].as<bool>();
   o.checkpoint_on_signal = !vm["no-signal-checkpoint"].as<bool>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
+  refuse_several_ranks("resume", "");
   return granjet::resume_command(o, std::cout);
 }
 
@@ -194,6 +216,7 @@ int compare(const std::vector<std::string>& args) {
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
   o.out_dir = vm["out"].as<std::string>();
+  refuse_several_ranks("compare", "event_driven");
   return granjet::compare_command(o, std::cout);
 }
 

@@ -16,6 +16,8 @@
 #include <string_view>
 #include <utility>
 
+#include "campaign/mpi_world.hpp"
+
 extern char** environ;
 
 namespace granjet {
@@ -36,11 +38,19 @@ ChildProcess::ChildProcess(const std::vector<std::string>& args, const std::file
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
 
-  // The environment, with this process named as the parent to end with.
+  // The environment, with this process named as the parent to end with, and without the world
+  // size of an mpirun that started this one: each run is a process of its own, not one of the
+  // launcher's ranks (launched_ranks, mpi_world.hpp), and one run refuses several ranks.
   const std::string parent = std::string(kParentVariable) + "=" + std::to_string(getpid());
   std::vector<char*> env{const_cast<char*>(parent.c_str())};
+  const auto kept = [](std::string_view entry) {
+    if (entry.starts_with(kParentVariable)) return false;
+    for (std::string_view name : kLaunchedRanksVariables)
+      if (entry.starts_with(name) && entry.substr(name.size()).starts_with('=')) return false;
+    return true;
+  };
   for (char** e = environ; *e != nullptr; ++e)
-    if (std::string_view(*e).rfind(kParentVariable, 0) != 0) env.push_back(*e);
+    if (kept(*e)) env.push_back(*e);
   env.push_back(nullptr);
 
   posix_spawn_file_actions_t actions;

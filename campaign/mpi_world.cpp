@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdlib>
@@ -15,14 +16,6 @@
 
 namespace granjet {
 namespace {
-
-// The world size mpirun announces to its processes (Open MPI, then PMI as MPICH and Slurm set
-// it); 1 when not started by a launcher.
-int launcher_size() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
-    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
-  return 1;
-}
 
 std::string this_host() {
   std::array<char, 256> name{};
@@ -44,6 +37,12 @@ void wait_for(MPI_Request& request) {
 
 }  // namespace
 
+int launched_ranks() {
+  for (const char* name : kLaunchedRanksVariables)
+    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+  return 1;
+}
+
 bool built_with_mpi() {
 #ifdef GRANJET_HAS_MPI
   return true;
@@ -53,7 +52,7 @@ bool built_with_mpi() {
 }
 
 MpiWorld::MpiWorld() {
-  const int launched = launcher_size();
+  const int launched = launched_ranks();
 #ifdef GRANJET_HAS_MPI
   if (launched > 1) {
     MPI_Init(nullptr, nullptr);

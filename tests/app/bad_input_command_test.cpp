@@ -5,6 +5,7 @@
 #include <hdf5.h>
 #include <sys/stat.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -44,6 +45,31 @@ class BadInput : public testing::CommandTest {
     EXPECT_EQ(entries(), before) << args;
   }
 };
+
+// Started by mpirun as one of several ranks (as Open MPI tells its processes), a run, a resume
+// and a comparison refuse before they write: every rank would run the whole scene into the same
+// files. The event-driven backend says why it runs as one process.
+TEST_F(BadInput, OneRunStartedOnSeveralMpiRanksIsRefused) {
+  const fs::path copy = dir_ / "binary.ini";
+  fs::copy_file(scene("binary.ini"), copy);
+  const std::string out = " --out " + (dir_ / "a.h5").string();
+  struct Launched {  // the launcher's variable, for this scope
+    Launched() { ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1); }
+    ~Launched() { ::unsetenv("OMPI_COMM_WORLD_SIZE"); }
+  };
+  {
+    const Launched launched;
+    expect_refused("run " + copy.string() + out,
+                   "mpirun -n 2: granjet run runs as one process: one run is not spread");
+    expect_refused("run " + copy.string() + " --backend event_driven" + out,
+                   "the event-driven backend handles the collisions one at a time");
+    expect_refused("compare " + copy.string() + " --out " + (dir_ / "both").string(),
+                   "granjet compare runs as one process: the event-driven backend");
+    expect_refused("resume " + (dir_ / "a.h5.partial").string(),
+                   "granjet resume runs as one process: one run is not spread");
+  }
+  EXPECT_EQ(granjet("run " + copy.string() + out + " --quiet"), 0) << err_;  // one rank runs
+}
 
 TEST_F(BadInput, OutputThatIsTheSceneOrTheOtherOutputIsRefused) {
   const fs::path copy = dir_ / "binary.ini";
