@@ -1,0 +1,118 @@
+// RecursiveBisection: every point in the part part_of gives its position, parts balanced by
+// weight (not by count), cuts across the longest side, and coincident points kept together.
+#include "core/recursive_bisection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+namespace granjet {
+namespace {
+
+template <int D>
+std::vector<Vec<D>> random_points(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::vector<Vec<D>> x(n);
+  for (Vec<D>& p : x)
+    for (int a = 0; a < D; ++a) p[a] = u(rng);
+  return x;
+}
+
+// Every point's part is in range, is the part of its position, and the share-out is the same
+// when built again.
+TEST(RecursiveBisection, PartOfAPointsPositionIsItsPart) {
+  const std::vector<Vec<3>> x = random_points<3>(2000, 7);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.1, 3.0);
+  std::vector<double> w(x.size());
+  for (double& value : w) value = u(rng);
+  for (int parts = 1; parts <= 7; ++parts) {
+    const RecursiveBisection<3> rcb(x, w, parts);
+    std::vector<int> count(parts, 0);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      ASSERT_GE(rcb.part()[i], 0);
+      ASSERT_LT(rcb.part()[i], parts);
+      EXPECT_EQ(rcb.part_of(x[i]), rcb.part()[i]) << "point " << i << ", " << parts << " parts";
+      ++count[rcb.part()[i]];
+    }
+    for (int c : count) EXPECT_GT(c, 0) << parts << " parts";
+    EXPECT_EQ(RecursiveBisection<3>(x, w, parts).part(), rcb.part());
+  }
+}
+
+// Equal weights: each part within a few points of n / parts, for parts that are not powers of
+// two too (each cut misses its share by at most half a point's weight).
+TEST(RecursiveBisection, EqualWeightsGiveEqualCounts) {
+  const std::vector<Vec<2>> x = random_points<2>(1000, 3);
+  const std::vector<double> w(x.size(), 1.0);
+  for (int parts : {2, 3, 4, 5, 8}) {
+    const RecursiveBisection<2> rcb(x, w, parts);
+    std::vector<int> count(parts, 0);
+    for (int p : rcb.part()) ++count[p];
+    for (int c : count) EXPECT_NEAR(c, 1000.0 / parts, 2.0) << parts << " parts";
+  }
+}
+
+// A heavy cluster (the impact region's contacts) is cut finer: the parts balance weight, and
+// the cluster's points end up in more than one part.
+TEST(RecursiveBisection, AHeavyClusterIsSharedByWeightNotByCount) {
+  std::vector<Vec<2>> x = random_points<2>(900, 5);
+  std::vector<double> w(x.size(), 1.0);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(4.0, 5.0);
+  for (int k = 0; k < 100; ++k) {
+    x.push_back(Vec<2>(u(rng), u(rng)));
+    w.push_back(20.0);
+  }
+  const int parts = 4;
+  const RecursiveBisection<2> rcb(x, w, parts);
+  EXPECT_LT(imbalance(rcb.part(), w, parts), 1.0 + 2.0 * 20.0 / (2900.0 / parts));
+  std::vector<bool> holds_cluster(parts, false);
+  for (std::size_t i = 900; i < x.size(); ++i) holds_cluster[rcb.part()[i]] = true;
+  EXPECT_GE(std::count(holds_cluster.begin(), holds_cluster.end(), true), 2);
+  // By count the shares are far from equal: the cluster's parts hold few points.
+  std::vector<int> count(parts, 0);
+  for (int p : rcb.part()) ++count[p];
+  EXPECT_GT(*std::max_element(count.begin(), count.end()),
+            2 * *std::min_element(count.begin(), count.end()));
+}
+
+// Two parts of a long strip are cut across its length: every point of the lower part lies
+// left of every point of the upper one.
+TEST(RecursiveBisection, CutsAcrossTheLongestSide) {
+  std::vector<Vec<3>> x = random_points<3>(400, 13);
+  for (Vec<3>& p : x) p.y() *= 0.1, p.z() *= 0.1, p.x() *= 3.0;
+  const std::vector<double> w(x.size(), 1.0);
+  const RecursiveBisection<3> rcb(x, w, 2);
+  double lower_right = -1e9, upper_left = 1e9;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (rcb.part()[i] == 0)
+      lower_right = std::max(lower_right, x[i].x());
+    else
+      upper_left = std::min(upper_left, x[i].x());
+  EXPECT_LT(lower_right, upper_left);
+}
+
+// Points at one position cannot be cut apart: the first part holds them, the others none.
+TEST(RecursiveBisection, CoincidentPointsStayInOnePart) {
+  const std::vector<Vec<2>> x(10, Vec<2>(1.0, 2.0));
+  const std::vector<double> w(x.size(), 1.0);
+  const RecursiveBisection<2> rcb(x, w, 3);
+  for (int p : rcb.part()) EXPECT_EQ(p, 0);
+  EXPECT_EQ(rcb.part_of(Vec<2>(1.0, 2.0)), 0);
+  EXPECT_DOUBLE_EQ(imbalance(rcb.part(), w, 3), 3.0);
+}
+
+TEST(RecursiveBisection, ImbalanceIsTheHeaviestPartOverTheMean) {
+  const std::vector<int> part = {0, 0, 1};
+  const std::vector<double> w = {1.0, 1.0, 4.0};
+  EXPECT_DOUBLE_EQ(imbalance(part, w, 2), 4.0 / 3.0);
+  EXPECT_THROW(RecursiveBisection<2>(std::vector<Vec<2>>(2), w, 2), std::invalid_argument);
+  EXPECT_THROW(RecursiveBisection<2>(std::vector<Vec<2>>(3), w, 0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace granjet
