@@ -1,5 +1,9 @@
 // Cell binning for neighbour search: grains are counting-sorted by cell over their bounding
 // box (or a periodic box), so after reordering by order() every cell is a contiguous index range.
+// Within a cell grains come in the order of their ids where ids are given, so that the order
+// depends on the positions and ids alone, not on the order the grains came in: any part of the
+// grains (a rank's own and its neighbours', under a domain decomposition) is ordered as in the
+// whole, and so are its pairs, its contacts and the order of each grain's sums.
 #pragma once
 
 #include <algorithm>
@@ -22,8 +26,10 @@ class CellGrid {
  public:
   // Bins `positions` into cells with edges of at least `min_edge`, grown when the box would need
   // more than kMaxCellsPerGrain cells per grain (core/cell_sizing.hpp). `threads` share the
-  // passes over the grains (the same grid for any count).
-  void build(std::span<const Vec<D>> positions, double min_edge, int threads = 1) {
+  // passes over the grains (the same grid for any count). `id`: each grain's id, which orders
+  // the grains of a cell (empty: their index does).
+  void build(std::span<const Vec<D>> positions, double min_edge, int threads = 1,
+             std::span<const std::int64_t> id = {}) {
     Vec<D> lo = Vec<D>::Constant(0.0), hi = Vec<D>::Constant(0.0);
     if (!positions.empty()) lo = hi = positions[0];
     const auto n = static_cast<std::int64_t>(positions.size());
@@ -53,7 +59,7 @@ class CellGrid {
       // Cells are at least `edge` wide: dims_ rounds down.
       dims_[d] = std::max(1, static_cast<int>(extent[d] * inv_edge_[d]));
     }
-    bin(positions, threads);
+    bin(positions, id, threads);
   }
 
   // Tiles the periodic box [0, box) (positions wrapped into it) with cells of at least
@@ -61,7 +67,7 @@ class CellGrid {
   // neighbours are distinct cells and each pair of cells is visited once. A dilute box gets
   // larger cells rather than a huge empty grid, as in build().
   void build_periodic(std::span<const Vec<D>> positions, const Vec<D>& box, double min_edge,
-                      int threads = 1) {
+                      int threads = 1, std::span<const std::int64_t> id = {}) {
     periodic_ = true;
     lo_.setZero();
     const double edge =
@@ -72,10 +78,10 @@ class CellGrid {
         throw std::invalid_argument("periodic box narrower than three neighbour cells");
       inv_edge_[d] = dims_[d] / box[d];
     }
-    bin(positions, threads);
+    bin(positions, id, threads);
   }
 
-  // Grain indices sorted by cell (stable within a cell).
+  // Grain indices sorted by cell (within a cell by id, or by index without ids).
   std::span<const std::uint32_t> order() const { return order_; }
   // Grains of cell c are order()[start(c)] .. order()[start(c+1)-1].
   std::uint32_t start(std::size_t c) const { return start_[c]; }
@@ -118,9 +124,10 @@ class CellGrid {
 
   // A counting sort by cell, stable (index order within a cell), shared among threads without
   // atomics: each thread owns a run of cells and sweeps all the grains for those in it, counting
-  // then placing them. The runs split the grains evenly when they come nearly in cell order, as
-  // they do after the last rebuild's sort.
-  void bin(std::span<const Vec<D>> positions, int threads) {
+  // then placing them, then orders each of its cells by id (a handful of grains: insertion).
+  // The runs split the grains evenly when they come nearly in cell order, as they do after the
+  // last rebuild's sort.
+  void bin(std::span<const Vec<D>> positions, std::span<const std::int64_t> id, int threads) {
     total_ = 1;
     for (int d = 0; d < D; ++d) total_ *= dims_[d];
     const auto n = static_cast<std::int64_t>(positions.size());
@@ -161,6 +168,13 @@ class CellGrid {
         const std::size_t c = cell_of_[i] - lo;
         if (c < cells) order_[count[c]++] = static_cast<std::uint32_t>(i);
       }
+      if (!id.empty())  // count[c] is now where cell lo + c ends
+        for (std::size_t c = 0; c < cells; ++c) {
+          const std::uint32_t begin = start_[lo + c];
+          for (std::uint32_t k = begin + 1; k < count[c]; ++k)
+            for (std::uint32_t m = k; m > begin && id[order_[m]] < id[order_[m - 1]]; --m)
+              std::swap(order_[m], order_[m - 1]);
+        }
     }
   }
 

@@ -433,9 +433,9 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
   const double cut = 2.0 * max_radius + scene_.run.skin;
   if constexpr (Space::kPeriodic) {
     for (Vec<D>& x : p_.position()) space_.wrap(x);
-    grid_.build_periodic(p_.position(), space_.box, cut, threads_);
+    grid_.build_periodic(p_.position(), space_.box, cut, threads_, p_.id());
   } else {
-    grid_.build(p_.position(), cut, threads_);
+    grid_.build(p_.position(), cut, threads_, p_.id());
   }
   const auto order = grid_.order();
   p_.gather(order, threads_);

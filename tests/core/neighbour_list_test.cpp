@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -171,6 +172,40 @@ TYPED_TEST(NeighbourList, CellSortIsTheSameForAnyThreadCount) {
   for (std::size_t c = 0; c < one.cells(); ++c)
     for (std::uint32_t k = one.start(c); k + 1 < one.start(c + 1); ++k)
       EXPECT_LT(one.order()[k], one.order()[k + 1]);
+}
+
+// With ids, a cell's grains come in id order, so that the order is a function of positions and
+// ids alone: the same grains given in another order come out in the same order of ids.
+TYPED_TEST(NeighbourList, CellSortWithIdsDependsOnPositionsAndIdsAlone) {
+  constexpr int D = TypeParam::kDim;
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 6.0);
+  const std::size_t n = 2000;
+  std::vector<Vec<D>> x(n);
+  for (Vec<D>& xi : x)
+    for (int d = 0; d < D; ++d) xi[d] = u(rng);
+  std::vector<std::int64_t> id(n);
+  std::iota(id.begin(), id.end(), 100);
+  std::shuffle(id.begin(), id.end(), rng);  // ids not in index order
+  // The ids in the order a grid of these grains, given in this order, sorts them.
+  const auto sorted_ids = [](const std::vector<Vec<D>>& xs, const std::vector<std::int64_t>& ids,
+                             int threads) {
+    CellGrid<D> grid;
+    grid.build(xs, 1.5, threads, ids);
+    std::vector<std::int64_t> out;
+    for (std::uint32_t i : grid.order()) out.push_back(ids[i]);
+    return out;
+  };
+  const std::vector<std::int64_t> whole = sorted_ids(x, id, 1);
+  EXPECT_EQ(sorted_ids(x, id, 3), whole);
+  // The same grains in reverse: the same order of ids.
+  EXPECT_EQ(sorted_ids({x.rbegin(), x.rend()}, {id.rbegin(), id.rend()}, 2), whole);
+  // Within each cell, increasing ids.
+  CellGrid<D> grid;
+  grid.build(x, 1.5, 1, id);
+  for (std::size_t c = 0; c < grid.cells(); ++c)
+    for (std::uint32_t k = grid.start(c); k + 1 < grid.start(c + 1); ++k)
+      EXPECT_LT(id[grid.order()[k]], id[grid.order()[k + 1]]);
 }
 
 TEST(ParallelSort, GivesStdSortsOrderForAnyThreadCount) {
