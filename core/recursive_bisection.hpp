@@ -4,7 +4,8 @@
 // weighted share of the parts on either side (parts = a + b, a = parts / 2, the left side gets
 // a / parts of the weight). Meant for the soft DEM's domain decomposition over MPI ranks, one
 // part per rank, each grain weighted by its measured work, so that a jet's impact region,
-// where contacts crowd, is cut finer than its column. Deterministic: along an axis points are
+// where contacts crowd, is cut finer than its column; for_each_part_near names the parts that
+// need a grain as a ghost. Deterministic: along an axis points are
 // ordered by (coordinate, index), and a cut falls only between distinct coordinates, so that
 // part_of(x) gives every point of the build the part the build gave it.
 #pragma once
@@ -13,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <span>
 #include <stdexcept>
@@ -50,7 +52,36 @@ class RecursiveBisection {
     return nodes_[node].part;
   }
 
+  // Calls visit(part) for every part whose region comes closer than `reach` to position p, its
+  // own included (each once, in the order of the parts). A grain within reach of a grain of
+  // another part is within reach of that part's region, so the parts visited for a grain at
+  // reach = the largest interaction range are those that need it as a ghost. (Open space: a
+  // periodic box's images are not looked for.)
+  template <class Visit>
+  void for_each_part_near(const Vec<D>& p, double reach, Visit&& visit) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    near(0, p, reach * reach, Vec<D>::Constant(-inf), Vec<D>::Constant(inf), visit);
+  }
+
  private:
+  // Descends into node's region [low, high) while it is closer than sqrt(reach2) to p.
+  template <class Visit>
+  void near(int node, const Vec<D>& p, double reach2, Vec<D> low, Vec<D> high, Visit& visit) const {
+    const Vec<D> gap = (low - p).cwiseMax(p - high).cwiseMax(0.0);
+    if (!(gap.squaredNorm() < reach2)) return;
+    const Node& n = nodes_[node];
+    if (n.axis < 0) {
+      visit(n.part);
+      return;
+    }
+    const double top = high[n.axis];
+    high[n.axis] = n.at;
+    near(n.lower, p, reach2, low, high, visit);
+    high[n.axis] = top;
+    low[n.axis] = n.at;
+    near(n.upper, p, reach2, low, high, visit);
+  }
+
   struct Node {
     int axis = -1;  // -1: a leaf, all of whose region is `part`
     double at = 0.0;

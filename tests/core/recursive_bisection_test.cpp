@@ -106,6 +106,43 @@ TEST(RecursiveBisection, CoincidentPointsStayInOnePart) {
   EXPECT_DOUBLE_EQ(imbalance(rcb.part(), w, 3), 3.0);
 }
 
+// Ghosts: for every pair closer than the reach whose grains lie in different parts, each grain's
+// near parts include the other's part; its own part is always near, and a point far from
+// every cut is near its own part alone.
+TEST(RecursiveBisection, PartsNearAGrainHoldEveryPartnerWithinReach) {
+  const std::vector<Vec<3>> x = random_points<3>(1500, 17);
+  const std::vector<double> w(x.size(), 1.0);
+  const double reach = 0.9;
+  for (int parts : {2, 3, 6}) {
+    const RecursiveBisection<3> rcb(x, w, parts);
+    std::vector<std::vector<int>> near(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      rcb.for_each_part_near(x[i], reach, [&](int part) { near[i].push_back(part); });
+      EXPECT_TRUE(std::is_sorted(near[i].begin(), near[i].end()));
+      EXPECT_NE(std::find(near[i].begin(), near[i].end(), rcb.part()[i]), near[i].end());
+    }
+    std::size_t crossing = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      for (std::size_t j = i + 1; j < x.size(); ++j) {
+        if ((x[i] - x[j]).norm() >= reach || rcb.part()[i] == rcb.part()[j]) continue;
+        ++crossing;
+        EXPECT_NE(std::find(near[i].begin(), near[i].end(), rcb.part()[j]), near[i].end());
+        EXPECT_NE(std::find(near[j].begin(), near[j].end(), rcb.part()[i]), near[j].end());
+      }
+    EXPECT_GT(crossing, 0u) << parts << " parts";  // the test has pairs across cuts to check
+  }
+  // Two parts of a strip cut near x = 0: a point at x = -4 is near its own part alone.
+  std::vector<Vec<2>> strip;
+  for (int k = -50; k < 50; ++k) strip.push_back(Vec<2>(0.1 * k + 0.05, 0.0));
+  const RecursiveBisection<2> halves(strip, std::vector<double>(strip.size(), 1.0), 2);
+  std::vector<int> near;
+  halves.for_each_part_near(Vec<2>(-4.0, 0.0), 1.0, [&](int part) { near.push_back(part); });
+  EXPECT_EQ(near, std::vector<int>{0});
+  near.clear();
+  halves.for_each_part_near(Vec<2>(-0.5, 0.0), 1.0, [&](int part) { near.push_back(part); });
+  EXPECT_EQ(near, (std::vector<int>{0, 1}));
+}
+
 TEST(RecursiveBisection, ImbalanceIsTheHeaviestPartOverTheMean) {
   const std::vector<int> part = {0, 0, 1};
   const std::vector<double> w = {1.0, 1.0, 4.0};
