@@ -226,7 +226,6 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
                     });
   }
   const auto tether_forces = [&] {
-    if (!tethered_) return;
     std::optional<PhaseProfile::Timer> tethering;
     if (team_index() == 0) tethering.emplace(&this->profile(), phase_.tethers);
     wall_.add_forces_share(

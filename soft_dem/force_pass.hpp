@@ -91,12 +91,12 @@ class ForcePass {
     double largest;
   };
 
-  // Phases 1 to 4 in one parallel region. Every thread of the team runs before() at its start,
-  // ahead of the contacts' sums (the tether forces), and between() once every grain has its
-  // contacts' forces, before the update (the plate's forces); each hook may hold worksharing
-  // loops, each ending in a barrier. Phase 4: the grains with a force at this pass
-  // or the last (target.forced bits, or a tethered wall grain, which feels its springs) are
-  // pushed: advance(i) for each; coast(pushed, begin, end) moves the others of [begin, end)
+  // Phases 1 to 4 in one parallel region. With a tethered wall every thread of the team runs
+  // before() at its start, ahead of the contacts' sums (the tether forces), and it runs between()
+  // once every grain has its contacts' forces, before the update (the plate's forces); each
+  // hook may hold worksharing loops, each ending in a barrier. Phase 4: the grains with a force at
+  // this pass or the last (target.forced bits, or a tethered wall grain, which feels its springs)
+  // are pushed: advance(i) for each; coast(pushed, begin, end) moves the others of [begin, end)
   // (pushed[i] == 0). Each thread calls look(begin, end) on its range of grains, the last look
   // at this pass's forced bits, before they age for the next pass: bit 0 (a force at this
   // pass) becomes bit 1.
@@ -117,14 +117,17 @@ class ForcePass {
     std::vector<std::int64_t> pushed_count(threads_, 0);
     std::vector<double> thread_largest(threads_, 0.0);
     bool any_too_deep = false;  // the first such contact is looked for only then
-    std::optional<PhaseProfile::Timer> timing(std::in_place, profile_, phase_.test);
+    // (With a tethered wall the hook times itself from the fork on.)
+    std::optional<PhaseProfile::Timer> timing;
+    if (!tethered_wall) timing.emplace(profile_, phase_.test);
     std::atomic<int> sized = 0;  // find_share's threads that have counted their contacts
 #pragma omp parallel num_threads(threads_) reduction(| : any_too_deep) if (threads_ > 1)
     {
       const int t = team_index();
-      if (t == 0) timing.reset();
-      before();
-      if (t == 0) timing.emplace(profile_, phase_.test);
+      if (tethered_wall) {
+        before();
+        if (t == 0) timing.emplace(profile_, phase_.test);
+      }
       find_share(p, pairs, pair_row, tested, space, count, sized);
 #pragma omp barrier  // the join and carry-over are complete
       const auto contacts = static_cast<std::int64_t>(count[team_size()]);

@@ -133,6 +133,12 @@ TEST_F(GranjetCommand, ProfileSplitsTheLoopByPhaseAndChangesNoResult) {
     if (phase["name"] == "contacts: forces and sums") {
       EXPECT_GT(phase["work_seconds"], 0.0);
     }
+    // The step's phases are timed once a step (the tether hook included: jet3d is tethered).
+    for (const char* per_step : {"tethered target", "contacts: distance test, history carry-over",
+                                 "contacts: forces and sums", "grains: update"})
+      if (phase["name"] == per_step) {
+        EXPECT_EQ(phase["calls"], b["steps"]) << per_step;
+      }
   }
   EXPECT_NE(table.find("busy"), std::string::npos) << table;
   EXPECT_LE(timed, p["loop_seconds"].get<double>() * (1.0 + 1e-9));
