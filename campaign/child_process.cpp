@@ -40,7 +40,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& args, const std::file
 
   // The environment, with this process named as the parent to end with, and without the world
   // size of an mpirun that started this one: each run is a process of its own, not one of the
-  // launcher's ranks (launched_ranks, mpi_world.hpp), and one run refuses several ranks.
+  // launcher's ranks (launched_ranks, core/rank_team.hpp), and one run refuses several ranks.
   const std::string parent = std::string(kParentVariable) + "=" + std::to_string(getpid());
   std::vector<char*> env{const_cast<char*>(parent.c_str())};
   const auto kept = [](std::string_view entry) {

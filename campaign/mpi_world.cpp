@@ -37,12 +37,6 @@ void wait_for(MPI_Request& request) {
 
 }  // namespace
 
-int launched_ranks() {
-  for (const char* name : kLaunchedRanksVariables)
-    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
-  return 1;
-}
-
 bool built_with_mpi() {
 #ifdef GRANJET_HAS_MPI
   return true;

@@ -5,11 +5,12 @@
 // would run the whole campaign into the same directory).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/rank_team.hpp"  // launched_ranks
 
 namespace granjet {
 
@@ -48,12 +49,5 @@ class MpiWorld {
 
 // Whether this build can spread a campaign over MPI ranks.
 bool built_with_mpi();
-
-// The world size a launcher (mpirun, srun) announces to this process, from the first of these
-// variables that is set (Open MPI's, then PMI's as MPICH and Slurm set it); 1 when not started
-// by one. Read from the environment: no MPI call.
-inline constexpr std::array<const char*, 2> kLaunchedRanksVariables = {"OMPI_COMM_WORLD_SIZE",
-                                                                       "PMI_SIZE"};
-int launched_ranks();
 
 }  // namespace granjet

@@ -24,43 +24,59 @@ namespace granjet {
 template <int D>
 class CellGrid {
  public:
-  // Bins `positions` into cells with edges of at least `min_edge`, grown when the box would need
-  // more than kMaxCellsPerGrain cells per grain (core/cell_sizing.hpp). `threads` share the
+  // Where the cells lie: their origin, the inverse of their edge and how many there are across.
+  // build() takes it from the grains' bounding box; the ranks of a domain decomposition take
+  // one frame from the box and count of all grains and each bins its own in a window of it
+  // (build_in), so that their cells, and the order of their grains, are those of the whole.
+  struct Frame {
+    Vec<D> lo = Vec<D>::Zero();
+    Vec<D> inv_edge = Vec<D>::Ones();
+    std::array<int, D> dims{};
+  };
+  // The frame over [lo, hi] for `grains` grains, with edges of at least `min_edge`, grown when
+  // the box would need more than kMaxCellsPerGrain cells per grain (core/cell_sizing.hpp).
+  static Frame frame_of(const Vec<D>& lo, const Vec<D>& hi, double min_edge, std::size_t grains) {
+    const Vec<D> extent = (hi - lo).cwiseMax(min_edge);
+    const double edge = capped_cell_edge<D>(extent, min_edge, max_cells(grains), CellFit::kTile);
+    Frame f;
+    f.lo = lo;
+    for (int d = 0; d < D; ++d) {
+      f.inv_edge[d] = 1.0 / edge;
+      // Cells are at least `edge` wide: dims rounds down.
+      f.dims[d] = std::max(1, static_cast<int>(extent[d] * f.inv_edge[d]));
+    }
+    return f;
+  }
+
+  // Bins `positions` into the cells of the frame of their bounding box. `threads` share the
   // passes over the grains (the same grid for any count). `id`: each grain's id, which orders
   // the grains of a cell (empty: their index does).
   void build(std::span<const Vec<D>> positions, double min_edge, int threads = 1,
              std::span<const std::int64_t> id = {}) {
-    Vec<D> lo = Vec<D>::Constant(0.0), hi = Vec<D>::Constant(0.0);
-    if (!positions.empty()) lo = hi = positions[0];
-    const auto n = static_cast<std::int64_t>(positions.size());
-    std::vector<Vec<D>> thread_lo(threads, lo), thread_hi(threads, hi);
-#pragma omp parallel num_threads(threads) if (threads > 1)
-    {
-      Vec<D> my_lo = lo, my_hi = hi;  // locals: the threads' slots share cache lines
-#pragma omp for schedule(static) nowait
-      for (std::int64_t i = 0; i < n; ++i) {
-        my_lo = my_lo.cwiseMin(positions[i]);
-        my_hi = my_hi.cwiseMax(positions[i]);
-      }
-      thread_lo[team_index()] = my_lo;
-      thread_hi[team_index()] = my_hi;
-    }
-    for (int t = 0; t < threads; ++t) {  // minima and maxima are exact: any order
-      lo = lo.cwiseMin(thread_lo[t]);
-      hi = hi.cwiseMax(thread_hi[t]);
-    }
-    const Vec<D> extent = (hi - lo).cwiseMax(min_edge);
-    const double edge =
-        capped_cell_edge<D>(extent, min_edge, max_cells(positions.size()), CellFit::kTile);
-    periodic_ = false;
-    lo_ = lo;
-    for (int d = 0; d < D; ++d) {
-      inv_edge_[d] = 1.0 / edge;
-      // Cells are at least `edge` wide: dims_ rounds down.
-      dims_[d] = std::max(1, static_cast<int>(extent[d] * inv_edge_[d]));
-    }
-    bin(positions, id, threads);
+    const auto [lo, hi] = bounding_box(positions, threads);
+    bin_in(frame_of(lo, hi, min_edge, positions.size()), lo, hi, positions, id, threads);
   }
+
+  // Bins `positions` into the cells of `frame` that their bounding box covers (the window);
+  // the cell indices of this grid are the window's, frame_cell() turns them into the frame's.
+  void build_in(const Frame& frame, std::span<const Vec<D>> positions, int threads = 1,
+                std::span<const std::int64_t> id = {}) {
+    const auto [lo, hi] = bounding_box(positions, threads);
+    bin_in(frame, lo, hi, positions, id, threads);
+  }
+
+  // The frame's index of window cell c (the same as c for a grid of build()).
+  std::uint64_t frame_cell(std::size_t c) const {
+    const std::array<int, D> q = coords(c);
+    std::uint64_t linear = 0, stride = 1;
+    for (int d = 0; d < D; ++d) {
+      linear += static_cast<std::uint64_t>(q[d] + offset_[d]) * stride;
+      stride *= static_cast<std::uint64_t>(frame_dims_[d]);
+    }
+    return linear;
+  }
+  // The window cell of grain i (an index of the positions binned, before the reordering).
+  std::uint32_t cell_of(std::size_t i) const { return cell_of_[i]; }
 
   // Tiles the periodic box [0, box) (positions wrapped into it) with cells of at least
   // `min_edge`; neighbour cells wrap around. Three cells per axis at least, so that a cell's
@@ -70,6 +86,7 @@ class CellGrid {
                       int threads = 1, std::span<const std::int64_t> id = {}) {
     periodic_ = true;
     lo_.setZero();
+    offset_.fill(0);
     const double edge =
         capped_cell_edge<D>(box, min_edge, max_cells(positions.size()), CellFit::kTile);
     for (int d = 0; d < D; ++d) {
@@ -78,6 +95,7 @@ class CellGrid {
         throw std::invalid_argument("periodic box narrower than three neighbour cells");
       inv_edge_[d] = dims_[d] / box[d];
     }
+    frame_dims_ = dims_;
     bin(positions, id, threads);
   }
 
@@ -120,6 +138,49 @@ class CellGrid {
   static constexpr double kMaxCellsPerGrain = 16.0;
   static double max_cells(std::size_t grains) {
     return kMaxCellsPerGrain * static_cast<double>(std::max<std::size_t>(grains, 1));
+  }
+
+  static std::pair<Vec<D>, Vec<D>> bounding_box(std::span<const Vec<D>> positions, int threads) {
+    Vec<D> lo = Vec<D>::Constant(0.0), hi = Vec<D>::Constant(0.0);
+    if (!positions.empty()) lo = hi = positions[0];
+    const auto n = static_cast<std::int64_t>(positions.size());
+    std::vector<Vec<D>> thread_lo(threads, lo), thread_hi(threads, hi);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+      Vec<D> my_lo = lo, my_hi = hi;  // locals: the threads' slots share cache lines
+#pragma omp for schedule(static) nowait
+      for (std::int64_t i = 0; i < n; ++i) {
+        my_lo = my_lo.cwiseMin(positions[i]);
+        my_hi = my_hi.cwiseMax(positions[i]);
+      }
+      thread_lo[team_index()] = my_lo;
+      thread_hi[team_index()] = my_hi;
+    }
+    for (int t = 0; t < threads; ++t) {  // minima and maxima are exact: any order
+      lo = lo.cwiseMin(thread_lo[t]);
+      hi = hi.cwiseMax(thread_hi[t]);
+    }
+    return {lo, hi};
+  }
+
+  // The window of `frame` over the grains' box [lo, hi], then the sort.
+  void bin_in(const Frame& frame, const Vec<D>& lo, const Vec<D>& hi,
+              std::span<const Vec<D>> positions, std::span<const std::int64_t> id, int threads) {
+    periodic_ = false;
+    lo_ = frame.lo;
+    inv_edge_ = frame.inv_edge;
+    frame_dims_ = frame.dims;
+    offset_.fill(0);  // frame_coordinate is taken against the whole frame first
+    for (int d = 0; d < D; ++d) {
+      offset_[d] = frame_coordinate(lo, d);
+      dims_[d] = positions.empty() ? 1 : frame_coordinate(hi, d) - offset_[d] + 1;
+    }
+    bin(positions, id, threads);
+  }
+
+  // The frame's cell coordinate of x along axis d (clamped into the frame).
+  int frame_coordinate(const Vec<D>& x, int d) const {
+    return std::clamp(static_cast<int>((x[d] - lo_[d]) * inv_edge_[d]), 0, frame_dims_[d] - 1);
   }
 
   // A counting sort by cell, stable (index order within a cell), shared among threads without
@@ -181,7 +242,7 @@ class CellGrid {
   std::uint32_t cell_index(const Vec<D>& x) const {
     std::size_t linear = 0, stride = 1;
     for (int d = 0; d < D; ++d) {
-      const int k = std::clamp(static_cast<int>((x[d] - lo_[d]) * inv_edge_[d]), 0, dims_[d] - 1);
+      const int k = frame_coordinate(x, d) - offset_[d];
       linear += static_cast<std::size_t>(k) * stride;
       stride *= dims_[d];
     }
@@ -210,7 +271,9 @@ class CellGrid {
   Vec<D> lo_ = Vec<D>::Zero();
   Vec<D> inv_edge_ = Vec<D>::Ones();
   bool periodic_ = false;
-  std::array<int, D> dims_{};
+  std::array<int, D> dims_{};        // the window's cells across
+  std::array<int, D> offset_{};      // the frame coordinates of the window's first cell
+  std::array<int, D> frame_dims_{};  // the frame's cells across
   std::size_t total_ = 0;
   std::vector<std::uint32_t> cell_of_;
   std::vector<std::uint32_t> start_;

@@ -34,9 +34,12 @@ class BlowUpError : public std::runtime_error {
  public:
   BlowUpError(const std::string& what, std::int64_t step, double time, std::vector<GrainId> ids)
       : std::runtime_error(message(what, step, time, ids)),
+        reason_(what),
         step_(step),
         time_(time),
         ids_(std::move(ids)) {}
+  // What went wrong, without the step, time and grains.
+  const std::string& reason() const { return reason_; }
   std::int64_t step() const { return step_; }
   double time() const { return time_; }
   const std::vector<GrainId>& grain_ids() const { return ids_; }
@@ -49,6 +52,7 @@ class BlowUpError : public std::runtime_error {
     for (GrainId id : ids) s << " " << id;
     return s.str();
   }
+  std::string reason_;
   std::int64_t step_;
   double time_;
   std::vector<GrainId> ids_;

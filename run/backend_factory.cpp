@@ -13,7 +13,8 @@ const std::vector<Backend>& backends() {
   static const std::vector<Backend> all = {
       {"soft_dem", /*counts_events=*/false, /*rate_2d=*/9.5e7, /*rate_3d=*/6.5e7,
        /*bytes_per_grain=*/2048.0, dem::peak_overlap, dem::scene_support,
-       dem::make_dem_simulator<2>, dem::make_dem_simulator<3>},
+       [](const Scene& s) { return dem::make_dem_simulator<2>(s); },
+       [](const Scene& s) { return dem::make_dem_simulator<3>(s); }},
       {"event_driven", /*counts_events=*/true, /*rate_2d=*/5.0e5, /*rate_3d=*/5.0e5,
        /*bytes_per_grain=*/2048.0, /*peak_overlap=*/nullptr, ed::scene_support,
        ed::make_ed_simulator<2>, ed::make_ed_simulator<3>}};

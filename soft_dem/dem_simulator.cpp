@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <string>
@@ -14,12 +16,13 @@
 #include "core/jet_geometry.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 #include "soft_dem/contact_laws.hpp"
+#include "soft_dem/dem_simulator_ranks.hpp"
 
 namespace granjet::dem {
 
 template <int D, class Law, bool kMono, class Space>
 DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D> initial,
-                                                 Space space)
+                                                 Space space, RankTeam ranks)
     : scene_(scene),
       space_(std::move(space)),
       p_(std::move(initial)),
@@ -52,11 +55,33 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
   GrainId max_id = 0;
   for (GrainId id : p_.id()) max_id = std::max(max_id, id);
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
+  if (!ranks.alone()) {
+    if constexpr (Space::kPeriodic)
+      throw InputError("mpirun -n " + std::to_string(ranks.size()),
+                       "a periodic box runs on one rank: the domain decomposition cuts open "
+                       "space (run it without mpirun; run.threads = N shares one machine)");
+    double max_radius = 0.0;
+    for (double r : p_.radius()) max_radius = std::max(max_radius, r);
+    double reach = 2.0 * max_radius + scene.run.skin;
+    if (tethered_) reach = std::max(reach, wall_.longest_bond() + scene.run.skin);
+    domain_.emplace(ranks, reach);
+    // Every rank built the whole initial state: each cuts the same parts and keeps its own.
+    std::vector<double> weight(n, 1.0);
+    owned_.assign(n, 1);
+    domain_->partition(p_.position(), weight, owned_, true);
+    whole_cell_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      owned_[i] = domain_->owner_of(p_.position()[i]) == ranks.rank();
+      whole_cell_[i] = i;
+    }
+  }
   rebuild();
-  if (scene.run.integrator == IntegratorKind::kVelocityVerlet)
+  if (scene.run.integrator == IntegratorKind::kVelocityVerlet) {
     force_pass(  // F(t0) into force_prev_, for the predictor
         [](std::size_t) { return 0.0; },
         [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
+    if (over_ranks()) sync_ranks(0.0);
+  }
   // What the scene started with: grains the first rebuild removed (outside the region) count.
   initial_energy_ = energy().total() + removed_energy_;
 }
@@ -78,7 +103,12 @@ void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
   // The first step at or after t (a relative 1e-9 absorbs round-off in t / dt).
   const auto target = static_cast<std::int64_t>(std::ceil(t / dt_ - 1e-9));
   if (step_ >= target) return;
-  while (step_ < target && !this->stop_requested()) step();
+  whole_fresh_ = false;
+  // Over ranks a stop asked of any rank stops all at the same step.
+  const auto stopping = [&] { return over_ranks() ? stop_agreed_ : this->stop_requested(); };
+  while (step_ < target && !stopping()) step();
+  // Over ranks, a blow-up in the last pass of velocity Verlet is not yet agreed on.
+  if (over_ranks() && domain_->team().any(error_.has_value())) raise_together(error_);
   // Never hand back a blown-up state: the rebuild's check comes only at the next step.
   check_finite();
   check_energy();
@@ -95,9 +125,9 @@ void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   if (scene_.contact.restitution >= 1.0) return;
-  double kinetic = removed_energy_;
+  double kinetic = 0.0;
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    if (p_.inverse_mass()[i] == 0.0) continue;
+    if (p_.inverse_mass()[i] == 0.0 || (over_ranks() && !owned_[i])) continue;
     kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
     if constexpr (kRotation)
       kinetic += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
@@ -106,19 +136,41 @@ void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   // work F_a delta over them (adhesion.hpp), which the kinetic energy may hold on top.
   if (scene_.contact.adhesion > 0.0) {
     for_each_contact(
-        [&](std::size_t, std::size_t, std::uint32_t, const ContactGeometry<D>& g, const Vec<D>&) {
-          kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
+        [&](std::size_t i, std::size_t, std::uint32_t, const ContactGeometry<D>& g, const Vec<D>&) {
+          if (!over_ranks() || owned_[i])
+            kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
         },
         [](std::uint32_t) {});
-    for_each_plate_contact([&](std::size_t, const ContactGeometry<D>& g, const Vec<D>&) {
-      kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
+    for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>&) {
+      if (!over_ranks() || owned_[i])
+        kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
     });
   }
-  const double rise = kinetic - initial_energy_;
-  if (!(rise > 0.01 * initial_energy_)) return;
+  // Over ranks, the ranks' parts summed in rank order: the same bound on every rank.
   std::size_t fastest = 0;
+  double fastest_speed2 = -1.0;
   for (std::size_t i = 0; i < p_.size(); ++i)
-    if (p_.velocity()[i].squaredNorm() > p_.velocity()[fastest].squaredNorm()) fastest = i;
+    if ((!over_ranks() || owned_[i]) && p_.velocity()[i].squaredNorm() > fastest_speed2) {
+      fastest = i;
+      fastest_speed2 = p_.velocity()[i].squaredNorm();
+    }
+  GrainId fastest_id = p_.empty() ? 0 : p_.id()[fastest];
+  if (over_ranks()) {
+    const RankTeam& team = domain_->team();
+    const std::vector<double> parts = team.all_gather<double>(std::vector<double>{kinetic});
+    kinetic = std::accumulate(parts.begin(), parts.end(), 0.0);
+    struct Fastest {
+      double speed2;
+      GrainId id;
+    };
+    const std::vector<Fastest> each =
+        team.all_gather<Fastest>(std::vector<Fastest>{{fastest_speed2, fastest_id}});
+    fastest_id = std::max_element(each.begin(), each.end(), [](const Fastest& a, const Fastest& b) {
+                   return a.speed2 < b.speed2;
+                 })->id;
+  }
+  const double rise = kinetic + removed_energy_ - initial_energy_;
+  if (!(rise > 0.01 * initial_energy_)) return;
   throw BlowUpError("the kinetic energy rose " + std::to_string(100.0 * rise / initial_energy_) +
                         "% above the initial total (counting what removed grains carried off) "
                         "although every contact dissipates (e < 1); "
@@ -127,7 +179,7 @@ void DemSimulator<D, Law, kMono, Space>::check_energy() const {
                         std::to_string(dt_ / scene_.contact.contact_time) +
                         " t_c) is too long for the contacts (the study uses 0.02 t_c); "
                         "the fastest grain is listed",
-                    step_, time(), {p_.id()[fastest]});
+                    step_, time(), {fastest_id});
 }
 
 // One step from t to t + dt. Adams-Bashforth-2 needs no force after the position update, so
@@ -141,28 +193,45 @@ void DemSimulator<D, Law, kMono, Space>::step() {
   if (scene_.run.integrator == IntegratorKind::kAdamsBashforth2) {
     if (needs_rebuild_) rebuild();
     const Ab2Step<D, kRotation> ab2 = ab2_step();
-    add_travel(force_pass([&](std::size_t i) { return ab2.advance(i); },
-                          [&](const std::uint8_t* pushed, std::int64_t begin, std::int64_t end) {
-                            return ab2.coast(pushed, begin, end);
-                          }));
+    const auto coast = [&](const std::uint8_t* pushed, std::int64_t begin, std::int64_t end) {
+      return ab2.coast(pushed, begin, end);
+    };
+    if (!over_ranks()) {
+      add_travel(force_pass([&](std::size_t i) { return ab2.advance(i); }, coast));
+    } else {  // a ghost's move is its owner's to count (ghosts never coast: kGhostBit)
+      const std::uint8_t* owned = owned_.data();
+      const double own = force_pass(
+          [&](std::size_t i) {
+            const double speed2 = ab2.advance(i);
+            return owned[i] ? speed2 : 0.0;
+          },
+          coast);
+      add_travel(sync_ranks(own));
+    }
     first_step_ = false;
     ++step_;
   } else {
     const VerletStep<D, kRotation> predictor = verlet_step();
     const auto n = static_cast<std::int64_t>(p_.size());
     std::vector<double> thread_speed2(threads_, 0.0);
-    const PhaseProfile::Timer predicting = timer(phase_.predictor);
-#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+    const std::uint8_t* owned = over_ranks() ? owned_.data() : nullptr;
     {
-      double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
+      const PhaseProfile::Timer predicting = timer(phase_.predictor);
+#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+      {
+        double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
 #pragma omp for schedule(static) nowait
-      for (std::int64_t i = 0; i < n; ++i) speed2 = sticky_max(speed2, predictor.predict(i));
-      thread_speed2[team_index()] = speed2;
+        for (std::int64_t i = 0; i < n; ++i) {
+          const double own = predictor.predict(i);
+          if (owned == nullptr || owned[i]) speed2 = sticky_max(speed2, own);
+        }
+        thread_speed2[team_index()] = speed2;
+      }
     }
     double speed2 = 0.0;
     for (double s : thread_speed2) speed2 = sticky_max(speed2, s);
     ++step_;
-    add_travel(speed2);
+    add_travel(over_ranks() ? sync_ranks(speed2) : speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
     const VerletStep<D, kRotation> corrector = verlet_step();
     force_pass(
@@ -218,6 +287,7 @@ template <class Advance, class Coast>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
 double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
+  const auto start = std::chrono::steady_clock::now();
   if (!quiet_.fresh()) {
     const auto radius = p_.radius();
     quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
@@ -265,20 +335,31 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
                  });
   const std::vector<std::uint32_t>& contact_pair = pass_.history().pairs();
   stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
-  quiet_.after_pass(trusted_pushed.load(std::memory_order_relaxed));
+  if (!over_ranks()) {
+    quiet_.after_pass(trusted_pushed.load(std::memory_order_relaxed));
+  } else {  // the ranks agree on it in sync_ranks; a rank counts the contacts of its own rows
+    trusted_pushed_ = trusted_pushed.load(std::memory_order_relaxed);
+    pass_pending_ = true;
+    stats_.contacts = 0;
+    for (std::uint32_t k : contact_pair) stats_.contacts += owned_[pair_row_[k]];
+  }
   const std::size_t first_blown = outcome.first_too_deep;
   const std::int64_t plate_blown =
       *std::min_element(first_blown_on_plate.begin(), first_blown_on_plate.end());
   // A blown step is reported in row order (row i's pairs, then grain i on the plate, then
   // row i + 1); the state it integrated is lost anyway.
+  std::optional<BlowUpError> blown;
   if (first_blown < contact_pair.size()) {
     const std::uint32_t k = contact_pair[first_blown];
-    if (pair_row_[k] <= plate_blown) throw_overlap(pair_row_[k], pairs_.partner[k]);
+    if (pair_row_[k] <= plate_blown) blown = overlap_error(pair_row_[k], pairs_.partner[k]);
   }
-  if (plate_blown < n) throw_overlap(plate_blown, plate_blown);
+  if (!blown && plate_blown < n) blown = overlap_error(plate_blown, plate_blown);
+  if (blown && !over_ranks()) throw *blown;
+  if (blown && !error_) error_ = blown;  // raised on every rank by sync_ranks
   // advance zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
   if constexpr (kRotation) torque_.swap(torque_prev_);
+  busy_seconds_ += seconds_since(start);
   return outcome.largest;
 }
 
@@ -342,12 +423,12 @@ void DemSimulator<D, Law, kMono, Space>::for_each_plate_contact(OnContact&& on_c
 
 // Grain i overlapping grain j, or the plate when j == i.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::throw_overlap(std::size_t i, std::size_t j) const {
+BlowUpError DemSimulator<D, Law, kMono, Space>::overlap_error(std::size_t i, std::size_t j) const {
   std::vector<GrainId> ids{p_.id()[i]};
   if (j != i) ids.push_back(p_.id()[j]);
-  throw BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
-                        " of the smaller radius" + (j == i ? " against the plate" : ""),
-                    step_, time(), ids);
+  return BlowUpError("overlap beyond run.max_overlap = " + std::to_string(overlap_limit_) +
+                         " of the smaller radius" + (j == i ? " against the plate" : ""),
+                     step_, time(), ids);
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -358,10 +439,19 @@ void DemSimulator<D, Law, kMono, Space>::check_finite() const {
   bool any = false;
 #pragma omp parallel for num_threads(threads_) reduction(| : any) if (threads_ > 1)
   for (std::int64_t i = 0; i < n; ++i) any |= !x[i].allFinite() || !v[i].allFinite();
-  if (!any) return;
+  const auto finite = [&](std::size_t i) { return x[i].allFinite() && v[i].allFinite(); };
   std::vector<GrainId> bad;
-  for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
-    if (!p_.position()[i].allFinite() || !p_.velocity()[i].allFinite()) bad.push_back(p_.id()[i]);
+  if (over_ranks()) {  // the first ten in the order one rank holds them
+    if (!domain_->team().any(any)) return;
+    bad = in_whole_order<GrainId>([&](std::size_t i, auto emit) {
+      if (!finite(i)) emit(p_.id()[i]);
+    });
+    bad.resize(std::min<std::size_t>(bad.size(), 10));
+  } else {
+    if (!any) return;
+    for (std::size_t i = 0; i < p_.size() && bad.size() < 10; ++i)
+      if (!finite(i)) bad.push_back(p_.id()[i]);
+  }
   if (!bad.empty()) throw BlowUpError("non-finite position or velocity", step_, time(), bad);
 }
 
@@ -373,30 +463,54 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
   const auto n = static_cast<std::int64_t>(p_.size());
   const auto kind = p_.kind();
   const auto x = p_.position();
+  // Over ranks each removes its own grains (the ghosts are chosen anew after).
+  const auto escaped = [&](std::size_t i) {
+    return kind[i] == GrainKind::kFree && outside_region<D>(scene_.region, x[i]) &&
+           (!over_ranks() || owned_[i]);
+  };
   bool any = false;  // most rebuilds remove none: a shared look first
 #pragma omp parallel for num_threads(threads_) reduction(| : any) if (threads_ > 1)
-  for (std::int64_t i = 0; i < n; ++i)
-    any |= kind[i] == GrainKind::kFree && outside_region<D>(scene_.region, x[i]);
+  for (std::int64_t i = 0; i < n; ++i) any |= escaped(i);
+  if (over_ranks()) any = domain_->team().any(any);
   if (!any) return;
+  struct Carried {
+    double kinetic, rotational;
+  };
+  const auto carried = [&](std::size_t i) -> Carried {
+    double rotational = 0.0;
+    if constexpr (kRotation)
+      rotational = 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+    return {0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm(), rotational};
+  };
+  // The energy they carry off, summed in the order one rank holds them.
+  std::vector<Carried> removed;
+  if (over_ranks())
+    removed = in_whole_order<Carried>([&](std::size_t i, auto emit) {
+      if (escaped(i)) emit(carried(i));
+    });
   std::vector<std::uint32_t> keep;
   keep.reserve(p_.size());
   for (std::uint32_t i = 0; i < p_.size(); ++i) {
-    const bool escaped =
-        p_.kind()[i] == GrainKind::kFree && outside_region<D>(scene_.region, p_.position()[i]);
-    if (!escaped) {
+    if (!escaped(i)) {
       keep.push_back(i);
       continue;
     }
-    ++stats_.removed;
     index_of_id_[p_.id()[i]] = kRemoved;
-    removed_energy_ += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
-    if constexpr (kRotation)
-      removed_energy_ += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+    if (!over_ranks()) removed.push_back(carried(i));
+  }
+  for (const Carried& c : removed) {
+    ++stats_.removed;
+    removed_energy_ += c.kinetic;
+    if constexpr (kRotation) removed_energy_ += c.rotational;
   }
   p_.gather(keep, threads_);
   Particles<D>::gather_one(force_prev_, keep, threads_);
   Particles<D>::gather_one(torque_prev_, keep, threads_);
   Particles<D>::gather_one(inv_inertia_, keep, threads_);
+  if (over_ranks()) {
+    Particles<D>::gather_one(owned_, keep, threads_);
+    Particles<D>::gather_one(whole_cell_, keep, threads_);
+  }
   if (plate_) plate_->gather(keep);
 }
 
@@ -412,16 +526,17 @@ void DemSimulator<D, Law, kMono, Space>::rebuild() {
     const PhaseProfile::Timer timing = timer(phase_.rebuild_ids);
     history = histories();
   }
-  rebuild(history);
+  rebuild(std::move(history));
 }
 
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& history) {
+void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
   std::optional<PhaseProfile::Timer> timing(std::in_place, &this->profile(), phase_.rebuild_sort);
   check_finite();
   remove_escaped();
+  if (over_ranks()) distribute(history);
   const auto radius = p_.radius();
   double max_radius = radius.empty() ? 0.0 : radius[0];
   if constexpr (!kMono) {
@@ -429,12 +544,15 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
 #pragma omp parallel for num_threads(threads_) reduction(max : max_radius) if (threads_ > 1)
     for (std::int64_t i = 0; i < grains; ++i) max_radius = std::max(max_radius, radius[i]);
   }
+  if (over_ranks()) max_radius = over_all_ranks(domain_->team(), max_radius, &RankTeam::max);
   const double cut = 2.0 * max_radius + scene_.run.skin;
   if constexpr (Space::kPeriodic) {
     for (Vec<D>& x : p_.position()) space_.wrap(x);
     grid_.build_periodic(p_.position(), space_.box, cut, threads_, p_.id());
-  } else {
+  } else if (!over_ranks()) {
     grid_.build(p_.position(), cut, threads_, p_.id());
+  } else {  // the frame of all grains, this rank's window of it
+    grid_.build_in(whole_frame(cut), p_.position(), threads_, p_.id());
   }
   const auto order = grid_.order();
   p_.gather(order, threads_);
@@ -442,6 +560,12 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
   Particles<D>::gather_one(torque_prev_, order, threads_);
   Particles<D>::gather_one(inv_inertia_, order, threads_);
   if (plate_) plate_->gather(order);
+  if (over_ranks()) {
+    Particles<D>::gather_one(owned_, order, threads_);
+    whole_cell_.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+      whole_cell_[k] = grid_.frame_cell(grid_.cell_of(order[k]));
+  }
   const auto n = static_cast<std::int64_t>(p_.size());
   force_.resize(n);
   forced_.resize(n);
@@ -457,12 +581,22 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
 
   const auto kind = p_.kind();
   timing.emplace(&this->profile(), phase_.rebuild_pairs);
-  build_half_pairs<D>(
-      grid_, p_.position(), p_.radius(), scene_.run.skin,
-      [&](std::uint32_t i, std::uint32_t j) {
-        return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
-      },
-      pairs_, space_, threads_);
+  const auto both_walls = [&](std::uint32_t i, std::uint32_t j) {
+    return kind[i] == GrainKind::kWall && kind[j] == GrainKind::kWall;
+  };
+  if (!over_ranks()) {
+    build_half_pairs<D>(grid_, p_.position(), p_.radius(), scene_.run.skin, both_walls, pairs_,
+                        space_, threads_);
+  } else {  // two ghosts are their owners' pair
+    const std::uint8_t* owned = owned_.data();
+    build_half_pairs<D>(
+        grid_, p_.position(), p_.radius(), scene_.run.skin,
+        [&](std::uint32_t i, std::uint32_t j) { return both_walls(i, j) | !(owned[i] | owned[j]); },
+        pairs_, space_, threads_);
+    for (std::int64_t i = 0; i < n; ++i)
+      if (!owned_[i]) forced_[i] |= kGhostBit;
+    domain_->index_halo([this](GrainId id) { return index_of_id_[id]; });
+  }
   timing.emplace(&this->profile(), phase_.rebuild_rows);
   pair_row_.resize(pairs_.size());
 #pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
@@ -481,8 +615,10 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(const std::vector<History>& his
   travel_ = 0.0;
   needs_rebuild_ = false;
   std::int64_t free = 0;
+  const std::uint8_t* owned = over_ranks() ? owned_.data() : nullptr;
 #pragma omp parallel for num_threads(threads_) reduction(+ : free) if (threads_ > 1)
-  for (std::int64_t i = 0; i < n; ++i) free += kind[i] == GrainKind::kFree;
+  for (std::int64_t i = 0; i < n; ++i)
+    free += kind[i] == GrainKind::kFree && (owned == nullptr || owned[i]);
   free_grains_ = free;
   ++stats_.neighbour_rebuilds;
 }
@@ -546,7 +682,7 @@ void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   for (std::size_t c = 0; c < shear.size(); ++c)
     history.push_back({pair[2 * c], pair[2 * c + 1], shear[c]});
   if (tethered_) wall_.restore(a, "dem/tethers");
-  rebuild(history);
+  rebuild(std::move(history));
   step_ = a.integer("dem/step");
   first_step_ = a.integer("dem/first_step") != 0;
   removed_energy_ = a.real("dem/removed_energy");
@@ -623,7 +759,32 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) cons
 }
 
 template <int D, class Law, bool kMono, class Space>
+const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles() const {
+  if (!over_ranks()) return p_;
+  if (!whole_fresh_) {
+    whole_ = Particles<D>();
+    for (const GrainRecord<D>&g : in_whole_order<GrainRecord<D>>(
+             [&](std::size_t i, auto emit) { emit(record_of(i, false)); })) {
+      whole_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
+      whole_.spin().back() = get<D, Spin<D>>(g.w);
+    }
+    whole_fresh_ = true;
+  }
+  return whole_;
+}
+
+template <int D, class Law, bool kMono, class Space>
+SimStats DemSimulator<D, Law, kMono, Space>::stats() const {
+  if (!over_ranks()) return stats_;
+  SimStats s = stats_;  // steps, rebuilds and removals are counted alike on every rank
+  s.particle_steps = domain_->team().sum(stats_.particle_steps);
+  s.contacts = domain_->team().sum(stats_.contacts);
+  return s;
+}
+
+template <int D, class Law, bool kMono, class Space>
 EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
+  if (over_ranks()) return energy_over_ranks();
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (p_.inverse_mass()[i] == 0.0) continue;  // immovable wall grains carry no energy
@@ -663,22 +824,24 @@ PeriodicBox<D> periodic_box(const Scene& scene) {
 
 // Open space (jets, binary collisions), mono- or bidisperse.
 template <int D, class Law>
-std::unique_ptr<Simulator<D>> make_jet_with_law(const Scene& scene) {
+std::unique_ptr<Simulator<D>> make_jet_with_law(const Scene& scene, const RankTeam& ranks) {
   Particles<D> initial = build_initial_state<D>(scene);
   if (scene.monodisperse())
-    return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial));
-  return std::make_unique<DemSimulator<D, Law, false>>(scene, std::move(initial));
+    return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial), OpenSpace<D>{},
+                                                        ranks);
+  return std::make_unique<DemSimulator<D, Law, false>>(scene, std::move(initial), OpenSpace<D>{},
+                                                       ranks);
 }
 
 template <int D, class Law>
-std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene) {
+std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene, const RankTeam& ranks) {
   // The gases' grains are unit grains (Scene::monodisperse), so they need no other instance.
   if (scene.periodic()) {
     const PeriodicBox<D> box = periodic_box<D>(scene);
     return std::make_unique<DemSimulator<D, Law, true, PeriodicBox<D>>>(
-        scene, build_initial_state<D>(scene), box);
+        scene, build_initial_state<D>(scene), box, ranks);
   }
-  return make_jet_with_law<D, Law>(scene);
+  return make_jet_with_law<D, Law>(scene, ranks);
 }
 
 }  // namespace
@@ -699,7 +862,7 @@ double peak_overlap(const Scene& scene, double speed) {
 }
 
 template <int D>
-std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
+std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene, const RankTeam& ranks) {
   return with_contact_law(
       scene.contact.model,
       [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) -> std::unique_ptr<Simulator<D>> {
@@ -710,10 +873,10 @@ std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene) {
           // (rolling scenes are frictional and not periodic: scene_support refuses the rest);
           // the law's traits then say what is stored and integrated.
           if (scene.contact.rolling_friction > 0.0 && !scene.periodic())
-            return make_jet_with_law<D, Rolling<LawOf<D, true>>>(scene);
+            return make_jet_with_law<D, Rolling<LawOf<D, true>>>(scene, ranks);
           if (scene.needs_history() || scene.needs_rotation())
-            return make_with_law<D, LawOf<D, true>>(scene);
-          return make_with_law<D, LawOf<D, false>>(scene);
+            return make_with_law<D, LawOf<D, true>>(scene, ranks);
+          return make_with_law<D, LawOf<D, false>>(scene, ranks);
         }
       });
 }
@@ -731,7 +894,7 @@ template class DemSimulator<3, LinearSpringDashpot<3, true>, true>;
 // Rolling resistance on the linear law, monodisperse, for tests that set the grains' spins.
 template class DemSimulator<2, Rolling<LinearSpringDashpot<2, true>>, true>;
 template class DemSimulator<3, Rolling<LinearSpringDashpot<3, true>>, true>;
-template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
-template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
+template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&, const RankTeam&);
+template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&, const RankTeam&);
 
 }  // namespace granjet::dem

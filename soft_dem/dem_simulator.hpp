@@ -6,6 +6,9 @@
 // traits decide whether contact history is kept and whether grains turn, so a frictionless
 // scene compiles without both. Grains all of one size go without radius lookups (kMono); the
 // periodic gas scenes use minimum-image separations (Space = PeriodicBox), all others none.
+// Given a team of several MPI ranks, the grains of an open-space scene are spread over them by
+// space (soft_dem/domain.hpp) with the results of one rank; particles() and energy() are then
+// collective, every rank calling them in the same order.
 #pragma once
 
 #include <cstddef>
@@ -16,11 +19,14 @@
 #include <string_view>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "core/neighbour_list.hpp"
+#include "core/rank_team.hpp"
 #include "core/scene.hpp"
 #include "core/simulator.hpp"
 #include "core/space.hpp"
 #include "soft_dem/contact_geometry.hpp"
+#include "soft_dem/domain.hpp"
 #include "soft_dem/force_pass.hpp"
 #include "soft_dem/integrators.hpp"
 #include "soft_dem/plate.hpp"
@@ -32,15 +38,15 @@ namespace granjet::dem {
 template <int D, class Law, bool kMono = false, class Space = OpenSpace<D>>
 class DemSimulator final : public Simulator<D> {
  public:
-  DemSimulator(const Scene& scene, Particles<D> initial, Space space = {});
+  DemSimulator(const Scene& scene, Particles<D> initial, Space space = {}, RankTeam ranks = {});
 
   std::string_view backend() const override { return "soft_dem"; }
   // Steps until time() >= t: the state moves on whole steps of dt.
   void advance_to(double t) override;
   double time() const override { return static_cast<double>(step_) * dt_; }
-  const Particles<D>& particles() const override { return p_; }
+  const Particles<D>& particles() const override;
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
-  SimStats stats() const override { return stats_; }
+  SimStats stats() const override;
   bool has_contact_forces() const override { return true; }
   void sample_forces(ForceSample<D>& out) const override;
   EnergyBalance energy() const override;
@@ -75,9 +81,34 @@ class DemSimulator final : public Simulator<D> {
   // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
   std::vector<History> histories() const;
   void rebuild();
-  void rebuild(const std::vector<History>& history);
+  void rebuild(std::vector<History> history);
+  // Over ranks: the cell frame of all grains (CellGrid::Frame) for pairs of reach `cut`, and a
+  // value combined over the ranks.
+  typename CellGrid<D>::Frame whole_frame(double cut) const;
+  static double over_all_ranks(const RankTeam& team, double value,
+                               void (RankTeam::*combine)(std::span<double>) const) {
+    (team.*combine)(std::span<double>(&value, 1));
+    return value;
+  }
   void remove_escaped();
-  [[noreturn]] void throw_overlap(std::size_t i, std::size_t j) const;
+  BlowUpError overlap_error(std::size_t i, std::size_t j) const;
+  // Over MPI ranks (soft_dem/dem_simulator_ranks.hpp). distribute: at a rebuild, moves the
+  // grains to their owners and the ghosts to the ranks that need them, with the histories of
+  // their contacts (those for the grains held here come back in `history`).
+  void distribute(std::vector<History>& history);
+  double grain_weight(std::size_t i) const;
+  GrainRecord<D> record_of(std::size_t i, bool ghost) const;
+  // At the end of each step's moves: the ghosts' new state from their owners, then what every
+  // rank must agree on: the largest squared speed of all grains (returned), whether a trusted
+  // quiet grain was pushed, and any blow-up a rank found (raised on every rank).
+  double sync_ranks(double own_largest_speed2);
+  void raise_together(const std::optional<BlowUpError>& mine) const;
+  // Per-grain values of this rank's own grains, joined over all ranks in the order one rank
+  // holds the grains (by the cell of the last rebuild, then id).
+  template <class Value, class Of>
+  std::vector<Value> in_whole_order(Of&& value_of) const;
+  EnergyBalance energy_over_ranks() const;
+  bool over_ranks() const { return domain_.has_value(); }
   void check_finite() const;
   void check_energy() const;
   std::size_t index_of(GrainId id) const { return index_of_id_[id]; }
@@ -114,7 +145,7 @@ class DemSimulator final : public Simulator<D> {
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
   // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see
-  // ForcePass::pass).
+  // ForcePass::pass); kGhostBit marks a ghost.
   std::vector<std::uint8_t> forced_;
   static constexpr std::uint32_t kRemoved = UINT32_MAX;
   std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region
@@ -135,12 +166,30 @@ class DemSimulator final : public Simulator<D> {
   double initial_energy_ = 0.0;
   double last_collect_time_ = 0.0;
   SimStats stats_;
+
+  std::optional<Domain<D>> domain_;  // none on one rank
+  std::vector<std::uint8_t> owned_;  // per grain held: owned here (1) or a ghost (0)
+  // Per grain held: its cell in the frame of the last rebuild, its index in the initial state
+  // before the first; with the id, where one rank holds it.
+  std::vector<std::uint64_t> whole_cell_;
+  std::optional<BlowUpError> error_;  // a blow-up found here, to be raised on every rank
+  bool trusted_pushed_ = false;       // found by this rank's pass, for sync_ranks
+  bool pass_pending_ = false;         // a pass ran since the last sync_ranks
+  bool stop_agreed_ = false;          // some rank was asked to stop
+  // forced_'s bit for a ghost: always pushed, so that no coasting loop counts its speed.
+  static constexpr std::uint8_t kGhostBit = 4;
+  double busy_seconds_ = 0.0;  // this rank's time in force passes since the last cut
+  std::int64_t rebuilds_since_cut_ = 0;
+  double imbalance_ = 1.0;      // the ranks' slowest busy time over their mean
+  mutable Particles<D> whole_;  // particles() over ranks: all grains, on each rank
+  mutable bool whole_fresh_ = false;
 };
 
 // The factory's single point where run-time scene choices (dimension, contact.model, friction,
-// monodisperse grains, periodic space) become template instantiations.
+// monodisperse grains, periodic space) become template instantiations. `ranks`: the MPI ranks
+// that share the run (collective: each of them calls it).
 template <int D>
-std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene);
+std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene, const RankTeam& ranks = {});
 
 // Why the scene's contact.model cannot run in its dimension, or empty (scene_support.hpp).
 std::string contact_law_refusal(const Scene& scene);
@@ -148,7 +197,7 @@ std::string contact_law_refusal(const Scene& scene);
 // The scene's contact law's peak_overlap (linear_spring_dashpot.hpp says what a law provides).
 double peak_overlap(const Scene& scene, double speed);
 
-extern template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&);
-extern template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&);
+extern template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&, const RankTeam&);
+extern template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&, const RankTeam&);
 
 }  // namespace granjet::dem

@@ -386,8 +386,8 @@ class ForcePass {
     for (std::int64_t i = begin; i < end; ++i)
       pushed[i] = (forced[i] | (tethered & (kind[i] == GrainKind::kWall))) != 0;
     look(begin, end);
-    for (std::int64_t i = begin; i < end; ++i)
-      forced[i] = static_cast<std::uint8_t>((forced[i] & 1) << 1);
+    for (std::int64_t i = begin; i < end; ++i)  // bits 2 and up stay: a grain's lasting marks
+      forced[i] = static_cast<std::uint8_t>(((forced[i] & 1) << 1) | (forced[i] & ~3));
     std::vector<std::uint32_t>& listed = pushed_grains_[t];
     listed.resize(end - begin);
     std::int64_t count = 0;

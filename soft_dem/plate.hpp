@@ -88,6 +88,7 @@ class Plate : public PlateFace<D> {
   // Each grain's u_t against the plate, in grain order (empty without history): the simulator
   // reorders it with the grains and stores it in checkpoints.
   std::vector<Vec<D>>& shear() { return shear_; }
+  const std::vector<Vec<D>>& shear() const { return shear_; }
   void gather(std::span<const std::uint32_t> order) {
     if (!shear_.empty()) Particles<D>::gather_one(shear_, order);
   }

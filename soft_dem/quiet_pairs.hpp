@@ -50,6 +50,8 @@ class QuietPairs {
   std::span<const std::uint32_t> tested() const { return {tested_.data(), tested_count_}; }
   // Whether the classification still holds for the next pass.
   bool fresh() const { return age_ < kMaxAge; }
+  // Whether grain i is trusted quiet by the classification in force (fresh() only).
+  bool trusted(std::size_t i) const { return trusted_[i] != 0; }
   // After a neighbour rebuild: the list it classified is gone.
   void expire() { age_ = kMaxAge; }
 

@@ -4,8 +4,10 @@
 // id, so reordering is harmless.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -40,8 +42,9 @@ class TetheredWall {
 
   std::size_t bonds() const { return bonds_.size(); }
 
-  // Adds the tether forces; index_of maps a grain id to its current index. `threads` share
-  // the bonds, then the grains; each grain adds its anchor's force, then its bonds' in bond
+  // Adds the tether forces; index_of maps a grain id to its current index (p.size() or more for
+  // a grain held by another rank: its springs are skipped, and a bond to it gives NaN). `threads`
+  // share the bonds, then the grains; each grain adds its anchor's force, then its bonds' in bond
   // order, the same sums for any thread count.
   template <class IndexOf>
   void add_forces(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force,
@@ -58,10 +61,15 @@ class TetheredWall {
     const auto v = p.velocity();
     const auto bonds = static_cast<std::int64_t>(bonds_.size());
     const auto anchors = static_cast<std::int64_t>(anchors_.size());
+    const std::size_t grains = p.size();
 #pragma omp for schedule(static)
     for (std::int64_t k = 0; k < bonds; ++k) {  // the force on the bond's first grain
       const Bond& b = bonds_[k];
       const std::size_t i = index_of(b.i), j = index_of(b.j);
+      if (i >= grains || j >= grains) {  // a grain only another rank holds: unknown here
+        bond_force_[k].setConstant(std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
       const Vec<D> r = x[i] - x[j];
       const double dist = r.norm();
       const Vec<D> n = r / dist;
@@ -71,6 +79,7 @@ class TetheredWall {
 #pragma omp for schedule(static)
     for (std::int64_t a = 0; a < anchors; ++a) {
       const std::size_t i = index_of(anchors_[a].id);
+      if (i >= grains) continue;
       Vec<D> sum = force[i] - (spring_ * (x[i] - anchors_[a].position) + damping_ * v[i]);
       for (std::uint32_t m = bonds_of_first_[a]; m < bonds_of_first_[a + 1]; ++m) {
         const std::int64_t signed_bond = bonds_of_[m];  // k + 1 for a first grain, -(k + 1)
@@ -85,15 +94,36 @@ class TetheredWall {
 
   template <class IndexOf>
   double elastic_energy(const Particles<D>& p, IndexOf&& index_of) const {
-    const auto x = p.position();
     double e = 0.0;
-    for (const Anchor& a : anchors_)
-      e += 0.5 * spring_ * (x[index_of(a.id)] - a.position).squaredNorm();
-    for (const Bond& b : bonds_) {
-      const double stretch = (x[index_of(b.i)] - x[index_of(b.j)]).norm() - b.rest;
-      e += 0.5 * spring_ * stretch * stretch;
-    }
+    for_each_energy_term(p, index_of, [&](std::size_t, std::size_t, double term) { e += term; });
     return e;
+  }
+
+  // Calls visit(term, i, energy) for each spring's elastic energy in the order elastic_energy
+  // sums them: the anchors', then the bonds' (term counts both); i is the grain whose rank
+  // adds the term (the anchored grain, a bond's first grain). Springs with a grain not held
+  // here are left out.
+  template <class IndexOf, class Visit>
+  void for_each_energy_term(const Particles<D>& p, IndexOf&& index_of, Visit&& visit) const {
+    const auto x = p.position();
+    const std::size_t grains = p.size();
+    for (std::size_t a = 0; a < anchors_.size(); ++a) {
+      const std::size_t i = index_of(anchors_[a].id);
+      if (i < grains) visit(a, i, 0.5 * spring_ * (x[i] - anchors_[a].position).squaredNorm());
+    }
+    for (std::size_t k = 0; k < bonds_.size(); ++k) {
+      const std::size_t i = index_of(bonds_[k].i), j = index_of(bonds_[k].j);
+      if (i >= grains || j >= grains) continue;
+      const double stretch = (x[i] - x[j]).norm() - bonds_[k].rest;
+      visit(anchors_.size() + k, i, 0.5 * spring_ * stretch * stretch);
+    }
+  }
+
+  // The longest rest length of a bond (a ghost must be held that far from a rank's part).
+  double longest_bond() const {
+    double longest = 0.0;
+    for (const Bond& b : bonds_) longest = std::max(longest, b.rest);
+    return longest;
   }
 
  private:

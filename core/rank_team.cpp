@@ -1,0 +1,201 @@
+#include "core/rank_team.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+#include <string>
+
+#ifdef GRANJET_HAS_MPI
+#include <mpi.h>
+#endif
+
+namespace granjet {
+
+int launched_ranks() {
+  for (const char* name : kLaunchedRanksVariables)
+    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+  return 1;
+}
+
+namespace {
+
+#ifdef GRANJET_HAS_MPI
+// MPI counts in int: a message of 2 GiB or more is refused, not cut.
+int count_of(std::size_t bytes) {
+  if (bytes > static_cast<std::size_t>(INT32_MAX))
+    throw std::runtime_error("an MPI message of " + std::to_string(bytes) +
+                             " bytes is beyond the 2 GiB one call carries");
+  return static_cast<int>(bytes);
+}
+
+std::vector<int> offsets_of(const std::vector<int>& counts, std::size_t& total) {
+  std::vector<int> offsets(counts.size(), 0);
+  total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = count_of(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  count_of(total);
+  return offsets;
+}
+#endif
+
+}  // namespace
+
+RankTeam RankTeam::world() {
+  RankTeam team;
+#ifdef GRANJET_HAS_MPI
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (initialised) {
+    MPI_Comm_rank(MPI_COMM_WORLD, &team.rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &team.size_);
+  }
+#endif
+  return team;
+}
+
+#ifdef GRANJET_HAS_MPI
+
+void RankTeam::max(std::span<double> values) const {
+  if (alone() || values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
+                MPI_COMM_WORLD);
+}
+
+void RankTeam::min(std::span<double> values) const {
+  if (alone() || values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN,
+                MPI_COMM_WORLD);
+}
+
+std::int64_t RankTeam::sum(std::int64_t value) const {
+  if (alone()) return value;
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return value;
+}
+
+bool RankTeam::any(bool value) const {
+  if (alone()) return value;
+  int v = value ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+  return v != 0;
+}
+
+std::vector<std::byte> RankTeam::all_gather_bytes(std::vector<std::byte> mine) const {
+  if (alone()) return mine;
+  std::vector<int> counts(size_);
+  const int count = count_of(mine.size());
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::size_t total = 0;
+  const std::vector<int> offsets = offsets_of(counts, total);
+  std::vector<std::byte> joined(total);
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(),
+                 MPI_BYTE, MPI_COMM_WORLD);
+  return joined;
+}
+
+std::vector<std::byte> RankTeam::gather_bytes(std::vector<std::byte> mine) const {
+  if (alone()) return mine;
+  std::vector<int> counts(size_);
+  const int count = count_of(mine.size());
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  std::size_t total = 0;
+  std::vector<int> offsets(size_, 0);
+  if (rank_ == 0) offsets = offsets_of(counts, total);
+  std::vector<std::byte> joined(total);
+  MPI_Gatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(), MPI_BYTE,
+              0, MPI_COMM_WORLD);
+  return joined;
+}
+
+void RankTeam::broadcast_bytes(std::vector<std::byte>& bytes) const {
+  if (alone()) return;
+  std::uint64_t size = bytes.size();
+  MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(size);
+  MPI_Bcast(bytes.data(), count_of(size), MPI_BYTE, 0, MPI_COMM_WORLD);
+}
+
+std::vector<std::vector<std::byte>> RankTeam::exchange_bytes(
+    const std::vector<std::vector<std::byte>>& to, std::span<const int> partners) const {
+  if (to.size() != static_cast<std::size_t>(size_))
+    throw std::invalid_argument("rank team exchange: one message per rank");
+  std::vector<std::vector<std::byte>> from(size_);
+  if (alone()) {
+    from[0] = to[0];
+    return from;
+  }
+  std::vector<int> all;
+  if (partners.empty())
+    for (int r = 0; r < size_; ++r) all.push_back(r);
+  const std::span<const int> with = partners.empty() ? std::span<const int>(all) : partners;
+  // Sizes first, then the messages; the tags keep the two rounds apart.
+  constexpr int kSizeTag = 11, kDataTag = 12;
+  std::vector<std::uint64_t> incoming(size_, 0), outgoing(size_, 0);
+  std::vector<MPI_Request> requests;
+  for (int r : with) {
+    outgoing[r] = to[r].size();
+    requests.emplace_back();
+    MPI_Irecv(&incoming[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
+    requests.emplace_back();
+    MPI_Isend(&outgoing[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  requests.clear();
+  for (int r : with) {
+    from[r].resize(incoming[r]);
+    requests.emplace_back();
+    MPI_Irecv(from[r].data(), count_of(incoming[r]), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
+              &requests.back());
+    requests.emplace_back();
+    MPI_Isend(to[r].data(), count_of(to[r].size()), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
+              &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  return from;
+}
+
+MpiSession::MpiSession() {
+  if (launched_ranks() <= 1) return;
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (!initialised) MPI_Init(nullptr, nullptr);
+  active_ = true;
+}
+
+MpiSession::~MpiSession() {
+  if (!active_) return;
+  if (std::uncaught_exceptions() > 0) MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Finalize();
+}
+
+#else  // one rank: nothing to combine
+
+void RankTeam::max(std::span<double>) const {}
+void RankTeam::min(std::span<double>) const {}
+std::int64_t RankTeam::sum(std::int64_t value) const { return value; }
+bool RankTeam::any(bool value) const { return value; }
+std::vector<std::byte> RankTeam::all_gather_bytes(std::vector<std::byte> mine) const {
+  return mine;
+}
+std::vector<std::byte> RankTeam::gather_bytes(std::vector<std::byte> mine) const { return mine; }
+void RankTeam::broadcast_bytes(std::vector<std::byte>&) const {}
+std::vector<std::vector<std::byte>> RankTeam::exchange_bytes(
+    const std::vector<std::vector<std::byte>>& to, std::span<const int>) const {
+  return to;
+}
+
+MpiSession::MpiSession() {
+  if (launched_ranks() > 1)
+    throw std::runtime_error(
+        "started as one of " + std::to_string(launched_ranks()) +
+        " MPI ranks, but this granjet was built without MPI. Rebuild with Open MPI "
+        "(libopenmpi-dev; scripts/setup.sh installs it) or start one process");
+}
+MpiSession::~MpiSession() = default;
+
+#endif
+
+}  // namespace granjet

@@ -1,0 +1,312 @@
+// DemSimulator's parts that spread one run over MPI ranks (soft_dem/domain.hpp says how and
+// why the results stay those of one rank): the grains' moves at a rebuild, the per-step sync,
+// and the sums over all grains in the order one rank makes them. Included by
+// dem_simulator.cpp, where the simulator is instantiated.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "soft_dem/dem_simulator.hpp"
+
+namespace granjet::dem {
+
+// The parts are cut anew at a rebuild when the slowest rank's busy time since the last cut
+// exceeds the ranks' mean by this factor, and at least kRebuildsPerCut rebuilds have passed
+// (a cut gathers every grain's position on every rank).
+inline constexpr double kRecutImbalance = 1.1;
+inline constexpr std::int64_t kRebuildsPerCut = 8;
+
+// A grain's share of a rank's work: its listed pairs, plus one for its own update.
+template <int D, class Law, bool kMono, class Space>
+double DemSimulator<D, Law, kMono, Space>::grain_weight(std::size_t i) const {
+  if (pairs_.first.size() != p_.size() + 1) return 1.0;  // before the first list
+  return 1.0 + static_cast<double>(pairs_.first[i + 1] - pairs_.first[i]);
+}
+
+template <int D, class Law, bool kMono, class Space>
+GrainRecord<D> DemSimulator<D, Law, kMono, Space>::record_of(std::size_t i, bool ghost) const {
+  GrainRecord<D> g{};
+  g.id = p_.id()[i];
+  g.kind = p_.kind()[i];
+  g.ghost = ghost;
+  put<D>(g.x, p_.position()[i]);
+  put<D>(g.v, p_.velocity()[i]);
+  put<D>(g.w, p_.spin()[i]);
+  g.radius = p_.radius()[i];
+  g.mass = p_.mass()[i];
+  put<D>(g.force_prev, force_prev_[i]);
+  put<D>(g.torque_prev, torque_prev_[i]);
+  if (plate_ && !plate_->shear().empty()) put<D>(g.plate_shear, plate_->shear()[i]);
+  return g;
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& history) {
+  Domain<D>& domain = *domain_;
+  const RankTeam& team = domain.team();
+  const std::size_t n = p_.size();
+  const auto x = p_.position();
+  for (std::size_t i = 0; i < n; ++i) index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
+
+  // Cut anew where the busy times grew uneven: each grain weighted by its pairs, scaled so
+  // that a rank's grains weigh its measured time.
+  ++rebuilds_since_cut_;
+  const std::vector<double> busy = team.all_gather<double>(std::vector<double>{busy_seconds_});
+  const double mean = std::accumulate(busy.begin(), busy.end(), 0.0) / busy.size();
+  if (mean > 0.0) imbalance_ = *std::max_element(busy.begin(), busy.end()) / mean;
+  if (rebuilds_since_cut_ >= kRebuildsPerCut && imbalance_ > kRecutImbalance) {
+    std::vector<double> weight(n, 0.0);
+    double mine = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (owned_[i]) mine += weight[i] = grain_weight(i);
+    const double scale = mine > 0.0 ? busy_seconds_ / mine : 1.0;
+    for (double& w : weight) w *= scale;
+    domain.partition(x, weight, owned_, false);
+    rebuilds_since_cut_ = 0;
+    busy_seconds_ = 0.0;
+  }
+
+  // Each owned grain to its owner and, as a ghost, to the ranks within reach.
+  const int ranks = domain.ranks();
+  std::vector<std::vector<GrainRecord<D>>> to(ranks);
+  std::vector<int> owner(n, -1);
+  std::vector<Vec<D>>* shear = plate_ && !plate_->shear().empty() ? &plate_->shear() : nullptr;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!owned_[i]) continue;
+    owner[i] = domain.owner_of(x[i]);
+    GrainRecord<D> g = record_of(i, false);
+    g.owner = owner[i];
+    to[owner[i]].push_back(g);
+    g.ghost = 1;
+    domain.for_each_ghost_rank(x[i], owner[i], [&](int r) { to[r].push_back(g); });
+  }
+  // A contact's history goes to the owners of its grains, from the owner of its first.
+  std::vector<std::vector<HistoryRecord<D>>> history_to(ranks);
+  for (const History& h : history) {
+    const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
+    if (a == kRemoved || b == kRemoved || !owned_[a]) continue;
+    HistoryRecord<D> r{h.a, h.b, {}};
+    put<D>(r.shear, h.shear);
+    const int owner_a = owner[a], owner_b = owned_[b] ? owner[b] : domain.owner_of(x[b]);
+    history_to[owner_a].push_back(r);
+    if (owner_b != owner_a) history_to[owner_b].push_back(r);
+  }
+  const std::vector<GrainRecord<D>> held = domain.move_grains(to);
+  history.clear();
+  for (const HistoryRecord<D>& r : domain.move_histories(history_to))
+    history.push_back({r.a, r.b, get<D, Vec<D>>(r.shear)});
+
+  for (GrainId id : p_.id()) index_of_id_[id] = kRemoved;
+  Particles<D> now;
+  const std::size_t m = held.size();
+  force_prev_.resize(m);
+  torque_prev_.resize(m);
+  inv_inertia_.resize(m);
+  owned_.resize(m);
+  if (shear) plate_->shear().resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const GrainRecord<D>& g = held[k];
+    now.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
+    now.spin()[k] = get<D, Spin<D>>(g.w);
+    force_prev_[k] = get<D, Vec<D>>(g.force_prev);
+    torque_prev_[k] = get<D, Spin<D>>(g.torque_prev);
+    inv_inertia_[k] = now.inverse_mass()[k] / (Dim<D>::kInertiaFactor * g.radius * g.radius);
+    owned_[k] = !g.ghost;
+    if (shear) plate_->shear()[k] = get<D, Vec<D>>(g.plate_shear);
+  }
+  p_ = std::move(now);
+  whole_fresh_ = false;
+}
+
+template <int D, class Law, bool kMono, class Space>
+auto DemSimulator<D, Law, kMono, Space>::whole_frame(double cut) const ->
+    typename CellGrid<D>::Frame {
+  const RankTeam& team = domain_->team();
+  std::vector<double> low(D, INFINITY), high(D, -INFINITY);
+  std::int64_t grains = 0;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!owned_[i]) continue;
+    ++grains;
+    for (int d = 0; d < D; ++d) {
+      low[d] = std::min(low[d], p_.position()[i][d]);
+      high[d] = std::max(high[d], p_.position()[i][d]);
+    }
+  }
+  team.min(low);
+  team.max(high);
+  grains = team.sum(grains);
+  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Zero();
+  if (grains > 0)
+    for (int d = 0; d < D; ++d) {
+      lo[d] = low[d];
+      hi[d] = high[d];
+    }
+  return CellGrid<D>::frame_of(lo, hi, cut, static_cast<std::size_t>(grains));
+}
+
+template <int D, class Law, bool kMono, class Space>
+double DemSimulator<D, Law, kMono, Space>::sync_ranks(double own_largest_speed2) {
+  const Domain<D>& domain = *domain_;
+  domain.update_ghosts(
+      [&](std::uint32_t i, GhostState<D>& s) {
+        put<D>(s.x, p_.position()[i]);
+        put<D>(s.v, p_.velocity()[i]);
+        put<D>(s.w, p_.spin()[i]);
+        put<D>(s.force_prev, force_prev_[i]);
+        put<D>(s.torque_prev, torque_prev_[i]);
+        s.forced = forced_[i];
+      },
+      [&](std::uint32_t i, const GhostState<D>& s) {
+        p_.position()[i] = get<D, Vec<D>>(s.x);
+        p_.velocity()[i] = get<D, Vec<D>>(s.v);
+        p_.spin()[i] = get<D, Spin<D>>(s.w);
+        force_prev_[i] = get<D, Vec<D>>(s.force_prev);
+        torque_prev_[i] = get<D, Spin<D>>(s.torque_prev);
+        forced_[i] = s.forced | kGhostBit;
+      });
+  // A ghost trusted quiet here that its owner's pass pushed (bit 1 after the ageing) ends this
+  // rank's classification as a trusted grain of its own would.
+  bool pushed = trusted_pushed_;
+  if (quiet_.fresh())
+    for (const std::vector<std::uint32_t>& from : domain.ghosts_from())
+      for (std::uint32_t i : from) pushed = pushed || (quiet_.trusted(i) && (forced_[i] & 2));
+  // A NaN speed becomes infinite: a maximum over ranks keeps it, and the rebuild reports it.
+  std::vector<double> agreed{std::isnan(own_largest_speed2) ? INFINITY : own_largest_speed2,
+                             pushed ? 1.0 : 0.0, error_ ? 1.0 : 0.0,
+                             this->stop_requested() ? 1.0 : 0.0};
+  domain.team().max(agreed);
+  if (agreed[2] > 0.0) raise_together(error_);
+  if (pass_pending_) quiet_.after_pass(agreed[1] > 0.0);
+  pass_pending_ = false;
+  trusted_pushed_ = false;
+  stop_agreed_ = agreed[3] > 0.0;
+  return agreed[0];
+}
+
+// Every rank throws the blow-up of the lowest rank that found one, so that all leave together
+// with the same report.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::raise_together(
+    const std::optional<BlowUpError>& mine) const {
+  const RankTeam& team = domain_->team();
+  struct Head {
+    std::int64_t step;
+    double time;
+    std::uint64_t reason, ids;
+    std::uint8_t found;
+  };
+  Head head{};
+  std::string reason;
+  std::vector<GrainId> ids;
+  if (mine) {
+    head = {mine->step(), mine->time(), mine->reason().size(), mine->grain_ids().size(), 1};
+    reason = mine->reason();
+    ids = mine->grain_ids();
+  }
+  const std::vector<Head> heads = team.all_gather<Head>(std::vector<Head>{head});
+  const std::vector<char> reasons =
+      team.all_gather<char>(std::vector<char>(reason.begin(), reason.end()));
+  const std::vector<GrainId> all_ids = team.all_gather<GrainId>(ids);
+  std::size_t at_reason = 0, at_ids = 0;
+  for (const Head& h : heads) {
+    if (h.found)
+      throw BlowUpError(
+          std::string(reasons.begin() + at_reason, reasons.begin() + at_reason + h.reason), h.step,
+          h.time, std::vector<GrainId>(all_ids.begin() + at_ids, all_ids.begin() + at_ids + h.ids));
+    at_reason += h.reason;
+    at_ids += h.ids;
+  }
+}
+
+template <int D, class Law, bool kMono, class Space>
+template <class Value, class Of>
+std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value_of) const {
+  struct Keyed {
+    std::uint64_t cell;
+    GrainId id;
+    std::uint32_t nth;  // of the grain's values
+    Value value;
+  };
+  std::vector<Keyed> mine;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!owned_[i]) continue;
+    std::uint32_t nth = 0;
+    value_of(i, [&](const Value& v) { mine.push_back({whole_cell_[i], p_.id()[i], nth++, v}); });
+  }
+  std::vector<Keyed> all = domain_->team().template all_gather<Keyed>(mine);
+  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) {
+    return std::tie(a.cell, a.id, a.nth) < std::tie(b.cell, b.id, b.nth);
+  });
+  std::vector<Value> out;
+  out.reserve(all.size());
+  for (const Keyed& k : all) out.push_back(k.value);
+  return out;
+}
+
+// energy() over ranks: each sum in the order one rank makes it, the same on every rank.
+template <int D, class Law, bool kMono, class Space>
+EnergyBalance DemSimulator<D, Law, kMono, Space>::energy_over_ranks() const {
+  EnergyBalance e;
+  struct Motion {
+    double kinetic, rotational;
+  };
+  for (const Motion& m : in_whole_order<Motion>([&](std::size_t i, auto emit) {
+         if (p_.inverse_mass()[i] == 0.0) return;
+         double rotational = 0.0;
+         if constexpr (kRotation)
+           rotational = 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+         emit({0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm(), rotational});
+       })) {
+    e.kinetic += m.kinetic;
+    if constexpr (kRotation) e.rotational += m.rotational;
+  }
+  for (double elastic : in_whole_order<double>([&](std::size_t i, auto emit) {
+         for_each_contact_of(
+             i,
+             [&](std::size_t, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>&) {
+               emit(law_.elastic_energy(g, pass_.history().of(k)));
+             },
+             [](std::uint32_t) {});
+       }))
+    e.elastic += elastic;
+  if (plate_)
+    for (double elastic : in_whole_order<double>([&](std::size_t i, auto emit) {
+           plate_->contact(
+               p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+               [&](const ContactGeometry<D>& g, const Vec<D>&) {
+                 emit(plate_->elastic_energy(i, g));
+               },
+               [] {});
+         }))
+      e.elastic += elastic;
+  if (tethered_) {
+    struct Term {
+      std::uint64_t term;
+      double energy;
+    };
+    std::vector<Term> mine;
+    wall_.for_each_energy_term(
+        p_, [this](GrainId id) { return index_of(id); },
+        [&](std::size_t term, std::size_t i, double energy) {
+          if (owned_[i]) mine.push_back({term, energy});
+        });
+    std::vector<Term> all = domain_->team().template all_gather<Term>(mine);
+    std::sort(all.begin(), all.end(), [](const Term& a, const Term& b) { return a.term < b.term; });
+    double tether = 0.0;
+    for (const Term& t : all) tether += t.energy;
+    e.elastic += tether;
+  }
+  e.removed = removed_energy_;
+  e.dissipated = initial_energy_ - e.total() - e.removed;
+  return e;
+}
+
+}  // namespace granjet::dem

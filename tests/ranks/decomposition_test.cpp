@@ -1,0 +1,118 @@
+// One soft-DEM run spread over the MPI ranks this test was started on (mpirun -n K, K = 2..4)
+// gives the one-rank run's grains bit for bit, in the same order, with the same energies and
+// counts: both integrators, friction on and off, the tethered and fixed targets, the plate
+// and the removal of escaped grains. Every rank runs the one-rank simulation alongside and
+// compares.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/rank_team.hpp"
+#include "run/scene_file.hpp"
+#include "soft_dem/dem_simulator.hpp"
+
+namespace granjet {
+namespace {
+
+template <int D>
+std::vector<double> raw_state(const Particles<D>& p) {
+  std::vector<double> out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out.push_back(static_cast<double>(p.id()[i]));
+    for (int d = 0; d < D; ++d) out.insert(out.end(), {p.position()[i][d], p.velocity()[i][d]});
+    const auto w = p.spin()[i];
+    if constexpr (D == 2)
+      out.push_back(w);
+    else
+      out.insert(out.end(), w.data(), w.data() + 3);
+  }
+  return out;
+}
+
+std::vector<double> energies(const EnergyBalance& e) {
+  return {e.kinetic, e.rotational, e.elastic, e.removed, e.dissipated};
+}
+
+template <int D>
+void expect_ranks_give_one_rank_bits(const std::string& scene_file,
+                                     std::vector<std::string> overrides, double t_end,
+                                     bool expect_removal = false) {
+  const RankTeam world = RankTeam::world();
+  ASSERT_GT(world.size(), 1) << "start this test with mpirun -n K, K > 1";
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/" + scene_file, overrides);
+  auto one = dem::make_dem_simulator<D>(scene);
+  auto spread = dem::make_dem_simulator<D>(scene, world);
+  // Compared at several times, so that rebuilds, moves and re-cuts come between.
+  for (double t : {0.25 * t_end, t_end}) {
+    one->advance_to(t);
+    spread->advance_to(t);
+    const std::vector<double> expected = raw_state(one->particles());
+    const std::vector<double> got = raw_state(spread->particles());
+    ASSERT_EQ(expected.size(), got.size()) << "t = " << t;
+    EXPECT_EQ(0, std::memcmp(expected.data(), got.data(), expected.size() * sizeof(double)))
+        << "t = " << t << ": the grains differ from the one-rank run's";
+    EXPECT_EQ(energies(one->energy()), energies(spread->energy())) << "t = " << t;
+    const SimStats a = one->stats(), b = spread->stats();
+    EXPECT_EQ(a.steps, b.steps);
+    EXPECT_EQ(a.particle_steps, b.particle_steps);
+    EXPECT_EQ(a.contacts, b.contacts);
+    EXPECT_EQ(a.neighbour_rebuilds, b.neighbour_rebuilds);
+    EXPECT_EQ(a.removed, b.removed);
+  }
+  EXPECT_GT(one->stats().contacts, 10);
+  if (expect_removal) {
+    EXPECT_GT(one->stats().removed, 0);
+  }
+}
+
+TEST(Ranks, Jet2dFrictionalBidisperseAb2) {
+  expect_ranks_give_one_rank_bits<2>("jet2d.ini", {"jet.grains=1500", "contact.friction=0.5"}, 4.0);
+}
+
+TEST(Ranks, Jet2dFrictionlessTetheredTargetWithRemoval) {
+  expect_ranks_give_one_rank_bits<2>(
+      "jet2d.ini", {"jet.grains=1500", "contact.friction=0", "jet.diameter=10", "region.radius=6"},
+      12.0, true);
+}
+
+TEST(Ranks, Jet3dFrictionalVerlet) {
+  expect_ranks_give_one_rank_bits<3>(
+      "jet3d.ini", {"jet.grains=2000", "run.integrator=verlet", "wall.diameter=14"}, 3.0);
+}
+
+TEST(Ranks, Jet3dOnTheFrictionalPlateWithRollingResistance) {
+  expect_ranks_give_one_rank_bits<3>(
+      "jet3d.ini",
+      {"jet.grains=2000", "contact.rolling_friction=0.1", "wall.kind=plate", "wall.diameter=14"},
+      3.0);
+}
+
+TEST(Ranks, Jet3dFixedTargetWithThreads) {
+  // Ranks times threads beyond a small machine's cores only wait on each other.
+  if (RankTeam::world().size() > 2) GTEST_SKIP() << "two threads on each of two ranks only";
+  expect_ranks_give_one_rank_bits<3>(
+      "jet3d.ini", {"jet.grains=2000", "wall.kind=fixed", "wall.diameter=14", "run.threads=2"},
+      3.0);
+}
+
+TEST(Ranks, Jet3dFrictionlessBidisperseAb2) {
+  expect_ranks_give_one_rank_bits<3>("jet3d.ini",
+                                     {"jet.grains=2000", "wall.diameter=14", "contact.friction=0",
+                                      "jet.dispersity=bi", "jet.small_diameter=0.8"},
+                                     3.0);
+}
+
+}  // namespace
+}  // namespace granjet
+
+int main(int argc, char** argv) {
+  granjet::MpiSession mpi;
+  testing::InitGoogleTest(&argc, argv);
+  // One report, from rank 0: the others' results reach it through the comparisons' exit codes.
+  if (granjet::RankTeam::world().rank() != 0)
+    delete testing::UnitTest::GetInstance()->listeners().Release(
+        testing::UnitTest::GetInstance()->listeners().default_result_printer());
+  return RUN_ALL_TESTS();
+}
