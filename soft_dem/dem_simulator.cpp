@@ -65,22 +65,17 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
     double reach = 2.0 * max_radius + scene.run.skin;
     if (tethered_) reach = std::max(reach, wall_.longest_bond() + scene.run.skin);
     domain_.emplace(ranks, reach);
-    // Every rank built the whole initial state: each cuts the same parts and keeps its own.
-    std::vector<double> weight(n, 1.0);
-    owned_.assign(n, 1);
-    domain_->partition(p_.position(), weight, owned_, true);
-    whole_cell_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      owned_[i] = domain_->owner_of(p_.position()[i]) == ranks.rank();
-      whole_cell_[i] = i;
-    }
+    own_share();
   }
   rebuild();
   if (scene.run.integrator == IntegratorKind::kVelocityVerlet) {
     force_pass(  // F(t0) into force_prev_, for the predictor
         [](std::size_t) { return 0.0; },
         [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
-    if (over_ranks()) sync_ranks(0.0);
+    if (over_ranks()) {
+      update_ghosts();
+      agree(0.0);
+    }
   }
   // What the scene started with: grains the first rebuild removed (outside the region) count.
   initial_energy_ = energy().total() + removed_energy_;
@@ -206,7 +201,8 @@ void DemSimulator<D, Law, kMono, Space>::step() {
             return owned[i] ? speed2 : 0.0;
           },
           coast);
-      add_travel(sync_ranks(own));
+      update_ghosts();
+      add_travel(agree(own));
     }
     first_step_ = false;
     ++step_;
@@ -231,7 +227,7 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     double speed2 = 0.0;
     for (double s : thread_speed2) speed2 = sticky_max(speed2, s);
     ++step_;
-    add_travel(over_ranks() ? sync_ranks(speed2) : speed2);
+    add_travel(over_ranks() ? agree(speed2) : speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
     const VerletStep<D, kRotation> corrector = verlet_step();
     force_pass(
@@ -241,6 +237,7 @@ void DemSimulator<D, Law, kMono, Space>::step() {
         },
         // F(t) = F(t + dt) = 0: nothing to correct
         [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
+    if (over_ranks()) update_ghosts();
   }
   stats_.steps = step_;
   stats_.particle_steps += free_grains_;
@@ -337,7 +334,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
   stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
   if (!over_ranks()) {
     quiet_.after_pass(trusted_pushed.load(std::memory_order_relaxed));
-  } else {  // the ranks agree on it in sync_ranks; a rank counts the contacts of its own rows
+  } else {  // the ranks agree on it in agree(); a rank counts the contacts of its own rows
     trusted_pushed_ = trusted_pushed.load(std::memory_order_relaxed);
     pass_pending_ = true;
     stats_.contacts = 0;
@@ -355,7 +352,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
   }
   if (!blown && plate_blown < n) blown = overlap_error(plate_blown, plate_blown);
   if (blown && !over_ranks()) throw *blown;
-  if (blown && !error_) error_ = blown;  // raised on every rank by sync_ranks
+  if (blown && !error_) error_ = blown;  // raised on every rank by agree()
   // advance zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
   if constexpr (kRotation) torque_.swap(torque_prev_);
@@ -628,6 +625,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
 // the same order, list and carried histories, and every later sum runs in the same order.
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::checkpoint(StateArchive& a) {
+  if (over_ranks()) return checkpoint_over_ranks(a);
   rebuild();
   put_particles(a, "dem/grains", p_);
   a.put_rows<Vec<D>>("dem/force_prev", force_prev_);
@@ -682,6 +680,7 @@ void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   for (std::size_t c = 0; c < shear.size(); ++c)
     history.push_back({pair[2 * c], pair[2 * c + 1], shear[c]});
   if (tethered_) wall_.restore(a, "dem/tethers");
+  if (over_ranks()) own_share();
   rebuild(std::move(history));
   step_ = a.integer("dem/step");
   first_step_ = a.integer("dem/first_step") != 0;
@@ -689,12 +688,15 @@ void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   initial_energy_ = a.real("dem/initial_energy");
   last_collect_time_ = a.real("dem/last_collect_time");
   stats_ = get_stats(a, "dem/stats");
+  if (over_ranks() && domain_->rank() != 0) stats_.particle_steps = 0;  // summed over ranks
+  whole_fresh_ = false;
 }
 
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
   const double elapsed = time() - last_collect_time_;
   last_collect_time_ = time();
+  if (over_ranks()) return collect_transfers_over_ranks(out, elapsed);
   const auto x = p_.position();
   const auto id = p_.id();
   // Runs of rows with as many listed pairs each, taken by the threads as they come free (the
@@ -735,6 +737,7 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) cons
   const auto id = p_.id();
   out.contacts.clear();
   out.total.assign(p_.size(), Vec<D>::Zero());
+  if (over_ranks()) return sample_forces_over_ranks(out);
   const auto add = [&](std::size_t i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
     // A law that turns no grain has no tangential force: projecting would only add rounding.
     const Vec<D> normal = kRotation ? Vec<D>(f.dot(g.n) * g.n) : f;

@@ -98,16 +98,26 @@ class DemSimulator final : public Simulator<D> {
   void distribute(std::vector<History>& history);
   double grain_weight(std::size_t i) const;
   GrainRecord<D> record_of(std::size_t i, bool ghost) const;
-  // At the end of each step's moves: the ghosts' new state from their owners, then what every
-  // rank must agree on: the largest squared speed of all grains (returned), whether a trusted
-  // quiet grain was pushed, and any blow-up a rank found (raised on every rank).
-  double sync_ranks(double own_largest_speed2);
+  // The ghosts' state from their owners: after each pass (the moves of Adams-Bashforth-2, the
+  // corrector of velocity Verlet; Verlet's predictor moves a ghost as its owner does).
+  void update_ghosts();
+  // What every rank must agree on after each step's moves: the largest squared speed of all
+  // grains (returned), whether a trusted quiet grain was pushed, any blow-up a rank found
+  // (raised on every rank) and a stop asked of any rank.
+  double agree(double own_largest_speed2);
   void raise_together(const std::optional<BlowUpError>& mine) const;
   // Per-grain values of this rank's own grains, joined over all ranks in the order one rank
   // holds the grains (by the cell of the last rebuild, then id).
   template <class Value, class Of>
   std::vector<Value> in_whole_order(Of&& value_of) const;
   EnergyBalance energy_over_ranks() const;
+  // Every rank holds all grains (the initial state, a checkpoint): each cuts the same parts
+  // and takes its own.
+  void own_share();
+  void checkpoint_over_ranks(StateArchive& a);
+  void collect_transfers_over_ranks(std::vector<PairImpulse<D>>& out, double elapsed) const;
+  // out.total holds a zero per grain held here.
+  void sample_forces_over_ranks(ForceSample<D>& out) const;
   bool over_ranks() const { return domain_.has_value(); }
   void check_finite() const;
   void check_energy() const;
@@ -173,8 +183,8 @@ class DemSimulator final : public Simulator<D> {
   // before the first; with the id, where one rank holds it.
   std::vector<std::uint64_t> whole_cell_;
   std::optional<BlowUpError> error_;  // a blow-up found here, to be raised on every rank
-  bool trusted_pushed_ = false;       // found by this rank's pass, for sync_ranks
-  bool pass_pending_ = false;         // a pass ran since the last sync_ranks
+  bool trusted_pushed_ = false;       // found by this rank's pass, for agree()
+  bool pass_pending_ = false;         // a pass ran since the last agree()
   bool stop_agreed_ = false;          // some rank was asked to stop
   // forced_'s bit for a ghost: always pushed, so that no coasting loop counts its speed.
   static constexpr std::uint8_t kGhostBit = 4;

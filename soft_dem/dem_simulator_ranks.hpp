@@ -5,8 +5,10 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -153,9 +155,8 @@ auto DemSimulator<D, Law, kMono, Space>::whole_frame(double cut) const ->
 }
 
 template <int D, class Law, bool kMono, class Space>
-double DemSimulator<D, Law, kMono, Space>::sync_ranks(double own_largest_speed2) {
-  const Domain<D>& domain = *domain_;
-  domain.update_ghosts(
+void DemSimulator<D, Law, kMono, Space>::update_ghosts() {
+  domain_->update_ghosts(
       [&](std::uint32_t i, GhostState<D>& s) {
         put<D>(s.x, p_.position()[i]);
         put<D>(s.v, p_.velocity()[i]);
@@ -172,6 +173,11 @@ double DemSimulator<D, Law, kMono, Space>::sync_ranks(double own_largest_speed2)
         torque_prev_[i] = get<D, Spin<D>>(s.torque_prev);
         forced_[i] = s.forced | kGhostBit;
       });
+}
+
+template <int D, class Law, bool kMono, class Space>
+double DemSimulator<D, Law, kMono, Space>::agree(double own_largest_speed2) {
+  const Domain<D>& domain = *domain_;
   // A ghost trusted quiet here that its owner's pass pushed (bit 1 after the ageing) ends this
   // rank's classification as a trusted grain of its own would.
   bool pushed = trusted_pushed_;
@@ -307,6 +313,196 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy_over_ranks() const {
   e.removed = removed_energy_;
   e.dissipated = initial_energy_ - e.total() - e.removed;
   return e;
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::own_share() {
+  const std::size_t n = p_.size();
+  std::vector<double> weight(n, 1.0);
+  owned_.assign(n, 1);
+  domain_->partition(p_.position(), weight, owned_, true);
+  whole_cell_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    owned_[i] = domain_->owner_of(p_.position()[i]) == domain_->rank();
+    whole_cell_[i] = i;  // the order they are held in now, the same on every rank
+  }
+}
+
+// Vectors as plain rows of doubles for the sums in whole order (ids too: exact below 2^53).
+template <int N>
+using Row = std::array<double, N>;
+template <int D, int N>
+void put_row(Row<N>& row, int at, const Vec<D>& v) {
+  for (int d = 0; d < D; ++d) row[at + d] = v[d];
+}
+template <int D, int N>
+Vec<D> get_row(const Row<N>& row, int at) {
+  Vec<D> v;
+  for (int d = 0; d < D; ++d) v[d] = row[at + d];
+  return v;
+}
+
+// The archive one rank writes: the grains and their per-grain state in its order, the
+// histories in its contact order.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) {
+  rebuild();
+  put_particles(a, "dem/grains", particles());
+  constexpr int S = kSpinWidth<D>;
+  std::vector<Vec<D>> force_prev;
+  for (const Row<D>&r : in_whole_order<Row<D>>([&](std::size_t i, auto emit) {
+         Row<D> row;
+         put_row<D, D>(row, 0, force_prev_[i]);
+         emit(row);
+       }))
+    force_prev.push_back(get_row<D, D>(r, 0));
+  std::vector<Spin<D>> torque_prev;
+  for (const Row<S>&r : in_whole_order<Row<S>>([&](std::size_t i, auto emit) {
+         Row<S> row;
+         std::memcpy(row.data(), &torque_prev_[i], sizeof(Spin<D>));
+         emit(row);
+       })) {
+    Spin<D> t;
+    std::memcpy(static_cast<void*>(&t), r.data(), sizeof(Spin<D>));
+    torque_prev.push_back(t);
+  }
+  std::vector<Vec<D>> plate_shear;
+  if (plate_ && !plate_->shear().empty())
+    for (const Row<D>&r : in_whole_order<Row<D>>([&](std::size_t i, auto emit) {
+           Row<D> row;
+           put_row<D, D>(row, 0, plate_->shear()[i]);
+           emit(row);
+         }))
+      plate_shear.push_back(get_row<D, D>(r, 0));
+  a.put_rows<Vec<D>>("dem/force_prev", force_prev);
+  a.put_rows<Spin<D>>("dem/torque_prev", torque_prev);
+  a.put_rows<Vec<D>>("dem/plate_shear", plate_shear);
+  // Each contact by the grain of its row, in the row's order.
+  std::vector<std::vector<History>> of_row(p_.size());
+  for (const History& h : histories()) of_row[index_of_id_[h.a]].push_back(h);
+  std::vector<GrainId> pair;
+  std::vector<Vec<D>> shear;
+  for (const Row<2 + D>&r : in_whole_order<Row<2 + D>>([&](std::size_t i, auto emit) {
+         for (const History& h : of_row[i]) {
+           Row<2 + D> row{static_cast<double>(h.a), static_cast<double>(h.b)};
+           put_row<D, 2 + D>(row, 2, h.shear);
+           emit(row);
+         }
+       })) {
+    pair.insert(pair.end(), {static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1])});
+    shear.push_back(get_row<D, 2 + D>(r, 2));
+  }
+  a.put_values<GrainId>("dem/history/pair", pair);
+  a.put_rows<Vec<D>>("dem/history/shear", shear);
+  if (tethered_) wall_.save(a, "dem/tethers");
+  a.put("dem/step", step_);
+  a.put("dem/first_step", std::int64_t{first_step_});
+  a.put("dem/removed_energy", removed_energy_);
+  a.put("dem/initial_energy", initial_energy_);
+  a.put("dem/last_collect_time", last_collect_time_);
+  put_stats(a, "dem/stats", stats());
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
+    std::vector<PairImpulse<D>>& out, double elapsed) const {
+  constexpr int N = 2 + 3 * D;
+  const auto x = p_.position();
+  const auto id = p_.id();
+  const auto row_of = [](GrainId i, GrainId j, const Vec<D>& at_i, const Vec<D>& at_j,
+                         const Vec<D>& impulse) {
+    Row<N> row{static_cast<double>(i), static_cast<double>(j)};
+    put_row<D, N>(row, 2, at_i);
+    put_row<D, N>(row, 2 + D, at_j);
+    put_row<D, N>(row, 2 + 2 * D, impulse);
+    return row;
+  };
+  const auto take = [&](const std::vector<Row<N>>& rows) {
+    for (const Row<N>& r : rows)
+      out.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 2),
+                     get_row<D, N>(r, 2 + D), get_row<D, N>(r, 2 + 2 * D)});
+  };
+  take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+    for_each_contact_of(
+        i,
+        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
+          const Vec<D> f = law_.force(g, v_rel, shear);
+          emit(row_of(id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f));
+        },
+        [](std::uint32_t) {});
+  }));
+  if (plate_)
+    take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+      plate_->contact(
+          x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+            const Vec<D> f = plate_->force(i, g, v_rel);
+            emit(row_of(id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f));
+          },
+          [] {});
+    }));
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>& out) const {
+  constexpr int N = 3 + 2 * D;
+  const auto id = p_.id();
+  const auto split = [&](GrainId i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
+    // A law that turns no grain has no tangential force: projecting would only add rounding.
+    const Vec<D> normal = kRotation ? Vec<D>(f.dot(g.n) * g.n) : f;
+    Row<N> row{static_cast<double>(i), static_cast<double>(j), g.overlap};
+    put_row<D, N>(row, 3, normal);
+    put_row<D, N>(row, 3 + D, f - normal);
+    return row;
+  };
+  const auto take = [&](const std::vector<Row<N>>& rows) {
+    for (const Row<N>& r : rows)
+      out.contacts.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]),
+                              get_row<D, N>(r, 3), get_row<D, N>(r, 3 + D), r[2]});
+  };
+  // Each grain's total from all its contacts here, in list order, as on one rank.
+  std::vector<Vec<D>>& total = out.total;
+  for_each_contact(
+      [&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
+          const Vec<D>& v_rel) {
+        Vec<D> shear = pass_.history().of(k);
+        const Vec<D> f = law_.force(g, v_rel, shear);
+        total[i] += f;
+        total[j] -= f;
+      },
+      [](std::uint32_t) {});
+  take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+    for_each_contact_of(
+        i,
+        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          Vec<D> shear = pass_.history().of(k);
+          emit(split(id[i], id[j], g, law_.force(g, v_rel, shear)));
+        },
+        [](std::uint32_t) {});
+  }));
+  if (plate_)
+    take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+      plate_->contact(
+          p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+            const Vec<D> f = plate_->force(i, g, v_rel);
+            total[i] += f;
+            emit(split(id[i], kPlateId, g, f));
+          },
+          [] {});
+    }));
+  if (tethered_)
+    wall_.add_forces(
+        p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(total));
+  std::vector<Vec<D>> whole;
+  for (const Row<D>&r : in_whole_order<Row<D>>([&](std::size_t i, auto emit) {
+         Row<D> row;
+         put_row<D, D>(row, 0, total[i]);
+         emit(row);
+       }))
+    whole.push_back(get_row<D, D>(r, 0));
+  total = std::move(whole);
 }
 
 }  // namespace granjet::dem

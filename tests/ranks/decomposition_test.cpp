@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/rank_team.hpp"
+#include "core/state_archive.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
@@ -33,6 +34,33 @@ std::vector<double> raw_state(const Particles<D>& p) {
 
 std::vector<double> energies(const EnergyBalance& e) {
   return {e.kinetic, e.rotational, e.elastic, e.removed, e.dissipated};
+}
+
+// The sampled forces and transfers, in the order and with the bits of one rank.
+template <int D>
+void expect_samples_of_one_rank(Simulator<D>& one, Simulator<D>& spread) {
+  ForceSample<D> a, b;
+  one.sample_forces(a);
+  spread.sample_forces(b);
+  ASSERT_EQ(a.contacts.size(), b.contacts.size());
+  for (std::size_t c = 0; c < a.contacts.size(); ++c) {
+    EXPECT_EQ(a.contacts[c].i, b.contacts[c].i);
+    EXPECT_EQ(a.contacts[c].j, b.contacts[c].j);
+    EXPECT_EQ(a.contacts[c].normal_force, b.contacts[c].normal_force);
+    EXPECT_EQ(a.contacts[c].tangential_force, b.contacts[c].tangential_force);
+    EXPECT_EQ(a.contacts[c].overlap, b.contacts[c].overlap);
+  }
+  EXPECT_EQ(a.total, b.total);
+  std::vector<PairImpulse<D>> ta, tb;
+  one.collect_transfers(ta);
+  spread.collect_transfers(tb);
+  ASSERT_EQ(ta.size(), tb.size());
+  for (std::size_t c = 0; c < ta.size(); ++c) {
+    EXPECT_EQ(ta[c].i, tb[c].i);
+    EXPECT_EQ(ta[c].j, tb[c].j);
+    EXPECT_EQ(ta[c].position_j, tb[c].position_j);
+    EXPECT_EQ(ta[c].impulse, tb[c].impulse);
+  }
 }
 
 template <int D>
@@ -60,6 +88,7 @@ void expect_ranks_give_one_rank_bits(const std::string& scene_file,
     EXPECT_EQ(a.contacts, b.contacts);
     EXPECT_EQ(a.neighbour_rebuilds, b.neighbour_rebuilds);
     EXPECT_EQ(a.removed, b.removed);
+    expect_samples_of_one_rank<D>(*one, *spread);
   }
   EXPECT_GT(one->stats().contacts, 10);
   if (expect_removal) {
@@ -102,6 +131,33 @@ TEST(Ranks, Jet3dFrictionlessBidisperseAb2) {
                                      {"jet.grains=2000", "wall.diameter=14", "contact.friction=0",
                                       "jet.dispersity=bi", "jet.small_diameter=0.8"},
                                      3.0);
+}
+
+// A checkpoint written over K ranks resumes on one rank, and one written on one rank resumes
+// over K, each going on as the run that wrote it.
+TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
+                                 {"jet.grains=2000", "wall.diameter=14", "contact.friction=0.5"});
+  auto one = dem::make_dem_simulator<3>(scene);
+  auto spread = dem::make_dem_simulator<3>(scene, RankTeam::world());
+  one->advance_to(2.0);
+  spread->advance_to(2.0);
+  StateArchive from_one, from_spread;
+  one->checkpoint(from_one);
+  spread->checkpoint(from_spread);
+  auto one_resumed = dem::make_dem_simulator<3>(scene);
+  auto spread_resumed = dem::make_dem_simulator<3>(scene, RankTeam::world());
+  one_resumed->restore(from_spread);
+  spread_resumed->restore(from_one);
+  for (Simulator<3>* sim : {one.get(), spread.get(), one_resumed.get(), spread_resumed.get()})
+    sim->advance_to(3.0);
+  const std::vector<double> expected = raw_state(one->particles());
+  EXPECT_GT(one->stats().contacts, 10);
+  EXPECT_EQ(expected, raw_state(spread->particles()));
+  EXPECT_EQ(expected, raw_state(one_resumed->particles()));
+  EXPECT_EQ(expected, raw_state(spread_resumed->particles()));
+  EXPECT_EQ(energies(one->energy()), energies(spread_resumed->energy()));
+  EXPECT_EQ(one->stats().particle_steps, spread_resumed->stats().particle_steps);
 }
 
 }  // namespace
