@@ -131,23 +131,23 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   return vm;
 }
 
-// Started by mpirun -n K with K > 1, `run`, `resume` and `compare` refuse before they write:
-// one run is not spread over ranks, and every rank would run the whole scene into the same
-// files.
+// Started by mpirun -n K with K > 1, `run` spreads a soft-DEM run over the ranks
+// (run/rank_leader.hpp); `resume`, `compare` and event-driven runs refuse before they write:
+// every rank would run the whole scene into the same files.
 void refuse_several_ranks(const std::string& command, const std::string& backend) {
   const int ranks = granjet::launched_ranks();
-  if (ranks <= 1) return;
+  if (ranks <= 1 || (command == "run" && backend != "event_driven")) return;
   const std::string why =
       backend == "event_driven"
           ? " runs as one process: the event-driven backend handles the collisions one at a time "
             "in one global order of time, which ranks could share only through a parallel event "
             "calendar (docs/event_driven.md)"
-          : " runs as one process: one run is not spread over ranks, and every rank would run "
-            "the whole scene into the same files";
+          : " runs as one process: every rank would run the whole scene into the same files";
   throw granjet::InputError("mpirun -n " + std::to_string(ranks),
                             "granjet " + command + why +
                                 ". Run it without mpirun (run.threads = N shares one machine's "
-                                "cores), or spread many runs with mpirun -n K granjet campaign");
+                                "cores), spread a soft-DEM run with mpirun -n K granjet run, or "
+                                "many runs with mpirun -n K granjet campaign");
 }
 
 int run(const std::vector<std::string>& args) {

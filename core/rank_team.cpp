@@ -167,7 +167,11 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() {
   if (!active_) return;
-  if (std::uncaught_exceptions() > 0) MPI_Abort(MPI_COMM_WORLD, 1);
+  // Rank 0 leads (run/rank_leader.hpp) and releases the others before it fails; another
+  // rank that fails alone would leave rank 0 waiting for it.
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (std::uncaught_exceptions() > 0 && rank != 0) MPI_Abort(MPI_COMM_WORLD, 1);
   MPI_Finalize();
 }
 

@@ -105,8 +105,8 @@ class RankTeam {
 };
 
 // MPI from MPI_Init to MPI_Finalize, for a run started as several ranks (launched_ranks() > 1);
-// nothing otherwise. Left by an exception it aborts every rank: a rank that failed alone would
-// leave the others waiting in a collective call forever.
+// nothing otherwise. A rank other than 0 left by an exception aborts every rank: rank 0 would
+// wait for it in a collective call forever.
 class MpiSession {
  public:
   MpiSession();

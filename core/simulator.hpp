@@ -110,12 +110,12 @@ class Simulator {
 
   // While *flag is set, advance_to returns early: after the current step (soft DEM) or event
   // (event-driven), with time() where it stopped. The app sets it from a signal handler.
-  void stop_when(const std::atomic<bool>* flag) { stop_ = flag; }
+  virtual void stop_when(const std::atomic<bool>* flag) { stop_ = flag; }
 
   // Wall time per phase of advance_to, once enabled (`granjet run --profile`); the phases are
   // the backend's own.
-  PhaseProfile& profile() { return profile_; }
-  const PhaseProfile& profile() const { return profile_; }
+  virtual PhaseProfile& profile() { return profile_; }
+  virtual const PhaseProfile& profile() const { return profile_; }
 
  protected:
   bool stop_requested() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include "analysis/h5md_writer.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
+#include "core/rank_team.hpp"
 #include "run/backend_factory.hpp"
 #include "run/checkpoint_schedule.hpp"
 #include "run/ensemble_output.hpp"
@@ -19,6 +21,7 @@
 #include "run/interrupts.hpp"
 #include "run/output_paths.hpp"
 #include "run/progress_rows.hpp"
+#include "run/rank_leader.hpp"
 #include "run/run_budget.hpp"
 #include "run/run_log.hpp"
 #include "run/run_loop.hpp"
@@ -27,6 +30,7 @@
 #include "run/scene_file.hpp"
 #include "run/scene_kinds.hpp"
 #include "run/version.hpp"
+#include "soft_dem/dem_simulator.hpp"
 
 namespace granjet {
 namespace {
@@ -307,14 +311,30 @@ template RunOutcome run_simulation<3>(Simulator<3>&, const Scene&, const SceneSu
 
 namespace {
 
-// One run of the scene as the backend resolves it, into `out_file`.
+// One run of the scene as the backend resolves it, into `out_file`. Started as several MPI
+// ranks, the soft DEM spreads it over them: rank 0 runs and writes it, the others follow.
 template <int D>
 int run_scene(const Scene& requested, const RunOptions& options,
               const std::filesystem::path& out_file, std::ostream& out,
               const StateArchive* resume_from) {
   const SceneSupport support = check_backend(options.backend, requested);
-  const std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, support.resolved);
-  return run_simulation<D>(*sim, requested, support, options, out_file, out, resume_from).exit_code;
+  const RankTeam ranks = RankTeam::world();
+  if (ranks.alone()) {
+    const std::unique_ptr<Simulator<D>> sim = make_simulator<D>(options.backend, support.resolved);
+    return run_simulation<D>(*sim, requested, support, options, out_file, out, resume_from)
+        .exit_code;
+  }
+  std::unique_ptr<Simulator<D>> sim = dem::make_dem_simulator<D>(support.resolved, ranks);
+  if (ranks.rank() != 0) {
+    // An interrupt is rank 0's to handle: it stops every rank at the same step.
+    std::signal(SIGINT, SIG_IGN);
+    std::signal(SIGTERM, SIG_IGN);
+    follow_leader(*sim, ranks, resume_from);
+    return 0;
+  }
+  RankLeader<D> leader(std::move(sim), ranks);
+  return run_simulation<D>(leader, requested, support, options, out_file, out, resume_from)
+      .exit_code;
 }
 
 }  // namespace
@@ -398,6 +418,11 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
 }
 
 int run_command(const RunOptions& options, std::ostream& out) {
+  const MpiSession mpi;  // for mpirun -n K with K > 1
+  if (mpi.active() && !options.seeds.empty())
+    throw InputError("--seeds",
+                     "runs its seeds one after another on one process; spread seeds "
+                     "over ranks with mpirun -n K granjet campaign");
   const Scene scene = load_scene(options.scene_file, options.overrides);
   check_run_budget(check_backend(options.backend, scene).resolved, options.backend,
                    physical_memory_bytes());
@@ -409,7 +434,8 @@ int run_command(const RunOptions& options, std::ostream& out) {
          run_outputs(member_file(out_file, seed), member_file(options.summary, seed),
                      "seed " + std::to_string(seed) + "'s"))
       outputs.push_back(std::move(o));
-  check_outputs(options.scene_file, outputs);
+  // Rank 0 writes: the others would find its files.
+  if (RankTeam::world().rank() == 0) check_outputs(options.scene_file, outputs);
   return with_dimension(scene.dimension, [&](auto d) {
     if (!options.seeds.empty()) return run_ensemble<d>(scene, options, out_file, out);
     return run_scene<d>(scene, options, out_file, out, nullptr);

@@ -59,14 +59,12 @@ TEST_F(BadInput, OneRunStartedOnSeveralMpiRanksIsRefused) {
   };
   {
     const Launched launched;
-    expect_refused("run " + copy.string() + out,
-                   "mpirun -n 2: granjet run runs as one process: one run is not spread");
     expect_refused("run " + copy.string() + " --backend event_driven" + out,
                    "the event-driven backend handles the collisions one at a time");
     expect_refused("compare " + copy.string() + " --out " + (dir_ / "both").string(),
                    "granjet compare runs as one process: the event-driven backend");
     expect_refused("resume " + (dir_ / "a.h5.partial").string(),
-                   "granjet resume runs as one process: one run is not spread");
+                   "granjet resume runs as one process: every rank would run the whole scene");
   }
   EXPECT_EQ(granjet("run " + copy.string() + out + " --quiet"), 0) << err_;  // one rank runs
 }

@@ -1,0 +1,141 @@
+// `mpirun -n K granjet run`: rank 0 runs the command as on one rank, through a RankLeader that
+// hands each collective call of the soft-DEM simulator (soft_dem/domain.hpp) to the other
+// ranks first; they follow in follow_leader, holding their share of the grains and writing
+// nothing. A blow-up is raised on every rank alike: a follower waits for the leader's next
+// call (its summary still asks for the energies) and leaves when the leader is done.
+#pragma once
+
+#include <memory>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "core/rank_team.hpp"
+#include "core/simulator.hpp"
+#include "core/state_archive.hpp"
+
+namespace granjet {
+
+enum class RankOrder : int {
+  kAdvance,
+  kParticles,
+  kTransfers,
+  kStats,
+  kForces,
+  kEnergy,
+  kCheckpoint,
+  kRestore,
+  kDone
+};
+
+struct RankCall {
+  RankOrder order = RankOrder::kDone;
+  double time = 0.0;
+};
+
+template <int D>
+class RankLeader final : public Simulator<D> {
+ public:
+  RankLeader(std::unique_ptr<Simulator<D>> sim, RankTeam ranks)
+      : sim_(std::move(sim)), ranks_(ranks) {}
+  ~RankLeader() override { call({RankOrder::kDone}); }
+  RankLeader(const RankLeader&) = delete;
+  RankLeader& operator=(const RankLeader&) = delete;
+
+  std::string_view backend() const override { return sim_->backend(); }
+  double time() const override { return sim_->time(); }
+  bool has_contact_forces() const override { return sim_->has_contact_forces(); }
+  void stop_when(const std::atomic<bool>* flag) override { sim_->stop_when(flag); }
+  PhaseProfile& profile() override { return sim_->profile(); }
+  const PhaseProfile& profile() const override { return sim_->profile(); }
+
+  void advance_to(double t) override {
+    call({RankOrder::kAdvance, t});
+    sim_->advance_to(t);
+  }
+  const Particles<D>& particles() const override {
+    call({RankOrder::kParticles});
+    return sim_->particles();
+  }
+  void collect_transfers(std::vector<PairImpulse<D>>& out) override {
+    call({RankOrder::kTransfers});
+    sim_->collect_transfers(out);
+  }
+  SimStats stats() const override {
+    call({RankOrder::kStats});
+    return sim_->stats();
+  }
+  void sample_forces(ForceSample<D>& out) const override {
+    call({RankOrder::kForces});
+    sim_->sample_forces(out);
+  }
+  EnergyBalance energy() const override {
+    call({RankOrder::kEnergy});
+    return sim_->energy();
+  }
+  void checkpoint(StateArchive& out) override {
+    call({RankOrder::kCheckpoint});
+    sim_->checkpoint(out);
+  }
+  // The followers restore the archive they were given (the same file).
+  void restore(const StateArchive& in) override {
+    call({RankOrder::kRestore});
+    sim_->restore(in);
+  }
+
+ private:
+  void call(RankCall c) const { ranks_.broadcast(c); }
+
+  std::unique_ptr<Simulator<D>> sim_;
+  RankTeam ranks_;
+};
+
+// A rank other than 0: makes each call the leader makes, until it is done. `archive`: the
+// checkpoint a resumed run restores (the leader's own copy of it).
+template <int D>
+void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive* archive) {
+  for (;;) {
+    RankCall c;
+    ranks.broadcast(c);
+    switch (c.order) {
+      case RankOrder::kAdvance:
+        try {
+          sim.advance_to(c.time);
+        } catch (const BlowUpError&) {  // the leader reports it
+        }
+        break;
+      case RankOrder::kParticles:
+        sim.particles();
+        break;
+      case RankOrder::kTransfers: {
+        std::vector<PairImpulse<D>> ignored;
+        sim.collect_transfers(ignored);
+        break;
+      }
+      case RankOrder::kStats:
+        sim.stats();
+        break;
+      case RankOrder::kForces: {
+        ForceSample<D> ignored;
+        sim.sample_forces(ignored);
+        break;
+      }
+      case RankOrder::kEnergy:
+        sim.energy();
+        break;
+      case RankOrder::kCheckpoint: {
+        StateArchive ignored;
+        sim.checkpoint(ignored);
+        break;
+      }
+      case RankOrder::kRestore:
+        sim.restore(*archive);
+        break;
+      case RankOrder::kDone:
+        return;
+    }
+  }
+}
+
+}  // namespace granjet

@@ -1,0 +1,35 @@
+// `mpirun -n 2 granjet run` writes the file one process writes, dataset for dataset (h5diff):
+// frames with forces and contacts, energies, inline analysis and a checkpoint, from a jet with
+// friction on the tethered target.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "command_fixture.hpp"
+
+namespace granjet::testing {
+namespace {
+
+class RunOverRanks : public CommandTest {};
+
+#ifdef GRANJET_HAS_MPI
+TEST_F(RunOverRanks, TwoRanksWriteTheFileOfOne) {
+  const std::string sets =
+      " --set jet.grains=2000 --set wall.diameter=14 --set run.t_end=3 --set output.interval=1"
+      " --set run.checkpoint_interval=1 --set analysis.window_start=1 --set analysis.window_end=3"
+      " --set output.fields=position,velocity,radius,id,omega,force,contacts --quiet --no-log";
+  const std::string one = (dir_ / "one.h5").string(), two = (dir_ / "two.h5").string();
+  ASSERT_EQ(granjet("run " + scene("jet3d.ini") + sets + " --out " + one), 0) << err_;
+  // Root needs --allow-run-as-root; two ranks on a machine of any size need --oversubscribe.
+  const std::string cmd = std::string(GRANJET_MPIEXEC) +
+                          " --allow-run-as-root --oversubscribe -n 2 " + GRANJET_BINARY + " run " +
+                          scene("jet3d.ini") + sets + " --out " + two + " > " +
+                          (dir_ / "mpi.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_TRUE(same_hdf5(one, two));
+}
+#endif
+
+}  // namespace
+}  // namespace granjet::testing
