@@ -124,13 +124,10 @@ std::vector<std::vector<std::byte>> RankTeam::exchange_bytes(
     throw std::invalid_argument("rank team exchange: one message per rank");
   std::vector<std::vector<std::byte>> from(size_);
   if (alone()) {
-    from[0] = to[0];
+    if (!partners.empty()) from[0] = to[0];
     return from;
   }
-  std::vector<int> all;
-  if (partners.empty())
-    for (int r = 0; r < size_; ++r) all.push_back(r);
-  const std::span<const int> with = partners.empty() ? std::span<const int>(all) : partners;
+  const std::span<const int> with = partners;
   // Sizes first, then the messages; the tags keep the two rounds apart.
   constexpr int kSizeTag = 11, kDataTag = 12;
   std::vector<std::uint64_t> incoming(size_, 0), outgoing(size_, 0);

@@ -66,12 +66,19 @@ class RankTeam {
     broadcast(one);
     value = one[0];
   }
-  // Sends to[r] to rank r and returns what each rank sent here, by rank (to.size() == size()).
-  // partners: the ranks this one may exchange with (empty sends included), the same relation
-  // seen from both sides; empty: every rank.
+  // Sends to[r] to rank r and returns what each rank sent here, by rank (to.size() == size()):
+  // with every rank.
   template <class T>
-  std::vector<std::vector<T>> exchange(const std::vector<std::vector<T>>& to,
-                                       std::span<const int> partners = {}) const {
+  std::vector<std::vector<T>> exchange(const std::vector<std::vector<T>>& to) const {
+    std::vector<int> all(size_);
+    for (int r = 0; r < size_; ++r) all[r] = r;
+    return exchange_with(to, all);
+  }
+  // The same with `partners` only (empty sends included), the same relation seen from both
+  // sides: only those ranks take part, and none at all for no partners.
+  template <class T>
+  std::vector<std::vector<T>> exchange_with(const std::vector<std::vector<T>>& to,
+                                            std::span<const int> partners) const {
     static_assert(std::is_trivially_copyable_v<T>);
     std::vector<std::vector<std::byte>> bytes(to.size());
     for (std::size_t r = 0; r < to.size(); ++r) bytes[r] = as_bytes(std::span<const T>(to[r]));

@@ -637,6 +637,13 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint(StateArchive& a) {
     pair.insert(pair.end(), {h.a, h.b});
     shear.push_back(h.shear);
   }
+  put_histories_and_counters(a, pair, shear, stats_);
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::put_histories_and_counters(
+    StateArchive& a, const std::vector<GrainId>& pair, const std::vector<Vec<D>>& shear,
+    const SimStats& stats) const {
   a.put_values<GrainId>("dem/history/pair", pair);
   a.put_rows<Vec<D>>("dem/history/shear", shear);
   if (tethered_) wall_.save(a, "dem/tethers");
@@ -645,7 +652,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint(StateArchive& a) {
   a.put("dem/removed_energy", removed_energy_);
   a.put("dem/initial_energy", initial_energy_);
   a.put("dem/last_collect_time", last_collect_time_);
-  put_stats(a, "dem/stats", stats_);
+  put_stats(a, "dem/stats", stats);
 }
 
 template <int D, class Law, bool kMono, class Space>

@@ -115,6 +115,10 @@ class DemSimulator final : public Simulator<D> {
   // and takes its own.
   void own_share();
   void checkpoint_over_ranks(StateArchive& a);
+  // The tail of a checkpoint, on one rank or over ranks: the histories by grain ids, the
+  // tethers, the clocks and counters.
+  void put_histories_and_counters(StateArchive& a, const std::vector<GrainId>& pair,
+                                  const std::vector<Vec<D>>& shear, const SimStats& stats) const;
   void collect_transfers_over_ranks(std::vector<PairImpulse<D>>& out, double elapsed) const;
   // out.total holds a zero per grain held here.
   void sample_forces_over_ranks(ForceSample<D>& out) const;

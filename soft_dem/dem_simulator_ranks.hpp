@@ -26,7 +26,7 @@ namespace granjet::dem {
 inline constexpr double kRecutImbalance = 1.1;
 inline constexpr std::int64_t kRebuildsPerCut = 8;
 
-// A grain's share of a rank's work: its listed pairs, plus one for its own update.
+// A grain's share of a rank's work: the listed pairs of its row, plus one for its update.
 template <int D, class Law, bool kMono, class Space>
 double DemSimulator<D, Law, kMono, Space>::grain_weight(std::size_t i) const {
   if (pairs_.first.size() != p_.size() + 1) return 1.0;  // before the first list
@@ -392,15 +392,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
     pair.insert(pair.end(), {static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1])});
     shear.push_back(get_row<D, 2 + D>(r, 2));
   }
-  a.put_values<GrainId>("dem/history/pair", pair);
-  a.put_rows<Vec<D>>("dem/history/shear", shear);
-  if (tethered_) wall_.save(a, "dem/tethers");
-  a.put("dem/step", step_);
-  a.put("dem/first_step", std::int64_t{first_step_});
-  a.put("dem/removed_energy", removed_energy_);
-  a.put("dem/initial_energy", initial_energy_);
-  a.put("dem/last_collect_time", last_collect_time_);
-  put_stats(a, "dem/stats", stats());
+  put_histories_and_counters(a, pair, shear, stats());
 }
 
 template <int D, class Law, bool kMono, class Space>

@@ -117,7 +117,7 @@ class Domain {
   }
 
   // Sends to[r] to rank r; returns every record sent here (this rank's own to[rank()]
-  // included), by sending rank. Then lists the halo by id: the ghosts each owner sends here and
+  // included). Then lists the halo by id: the ghosts each owner sends here and
   // the ghosts of this rank's own grains, for each rank that holds them, both in id order.
   std::vector<GrainRecord<D>> move_grains(const std::vector<std::vector<GrainRecord<D>>>& to) {
     std::vector<GrainRecord<D>> all;
@@ -170,7 +170,7 @@ class Domain {
       to[r].resize(send_index_[r].size());
       for (std::size_t k = 0; k < send_index_[r].size(); ++k) pack(send_index_[r][k], to[r][k]);
     }
-    const std::vector<std::vector<GhostState<D>>> from = team_.exchange(to, partners_);
+    const std::vector<std::vector<GhostState<D>>> from = team_.exchange_with(to, partners_);
     for (int r : partners_) {
       if (from[r].size() != recv_index_[r].size())
         throw std::logic_error("rank " + std::to_string(r) + " sent " +
