@@ -131,25 +131,6 @@ po::variables_map parse(const std::vector<std::string>& args, const po::options_
   return vm;
 }
 
-// Started by mpirun -n K with K > 1, `run` spreads a soft-DEM run over the ranks
-// (run/rank_leader.hpp); `resume`, `compare` and event-driven runs refuse before they write:
-// every rank would run the whole scene into the same files.
-void refuse_several_ranks(const std::string& command, const std::string& backend) {
-  const int ranks = granjet::launched_ranks();
-  if (ranks <= 1 || (command == "run" && backend != "event_driven")) return;
-  const std::string why =
-      backend == "event_driven"
-          ? " runs as one process: the event-driven backend handles the collisions one at a time "
-            "in one global order of time, which ranks could share only through a parallel event "
-            "calendar (docs/event_driven.md)"
-          : " runs as one process: every rank would run the whole scene into the same files";
-  throw granjet::InputError("mpirun -n " + std::to_string(ranks),
-                            "granjet " + command + why +
-                                ". Run it without mpirun (run.threads = N shares one machine's "
-                                "cores), spread a soft-DEM run with mpirun -n K granjet run, or "
-                                "many runs with mpirun -n K granjet campaign");
-}
-
 int run(const std::vector<std::string>& args) {
   granjet::RunOptions o;
   po::options_description desc;
@@ -166,7 +147,7 @@ int run(const std::vector<std::string>& args) {
   if (vm.count("seeds")) o.seeds = granjet::parse_seeds(vm["seeds"].as<std::string>(), "--seeds");
   if (vm.count("out")) o.out = vm["out"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
-  refuse_several_ranks("run", o.backend);
+  granjet::refuse_several_ranks("run", o.backend);
   return granjet::run_command(o, std::cout);
 }
 
@@ -182,7 +163,6 @@ int resume(const std::vector<std::string>& args) {
   o.log = !vm["no-log"].as<bool>();
   o.checkpoint_on_signal = !vm["no-signal-checkpoint"].as<bool>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
-  refuse_several_ranks("resume", "");
   return granjet::resume_command(o, std::cout);
 }
 
@@ -216,7 +196,7 @@ int compare(const std::vector<std::string>& args) {
   const po::variables_map vm = parse(args, desc, "scene");
   o.scene_file = vm["scene"].as<std::string>();
   o.out_dir = vm["out"].as<std::string>();
-  refuse_several_ranks("compare", "event_driven");
+  granjet::refuse_several_ranks("compare", "event_driven");
   return granjet::compare_command(o, std::cout);
 }
 

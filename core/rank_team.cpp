@@ -1,7 +1,9 @@
 #include "core/rank_team.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -19,6 +21,35 @@ int launched_ranks() {
 }
 
 namespace {
+
+double seconds_in_calls_ = 0.0;
+
+// Adds its scope's wall time to seconds_in_calls_.
+class InCall {
+ public:
+  InCall() : start_(std::chrono::steady_clock::now()) {}
+  ~InCall() {
+    seconds_in_calls_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  InCall(const InCall&) = delete;
+  InCall& operator=(const InCall&) = delete;
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+void check_received(int rank, std::size_t got, std::size_t expected) {
+  if (got != expected)
+    throw std::logic_error("rank " + std::to_string(rank) + " sent " + std::to_string(got) +
+                           " bytes where " + std::to_string(expected) + " were expected");
+}
+
+// One rank's message to itself.
+void copy_to(std::span<std::byte> to, std::span<const std::byte> from, bool sizes_known = false) {
+  if (sizes_known) check_received(0, from.size(), to.size());
+  if (!from.empty()) std::memcpy(to.data(), from.data(), from.size());
+}
 
 #ifdef GRANJET_HAS_MPI
 // MPI counts in int: a message of 2 GiB or more is refused, not cut.
@@ -43,6 +74,14 @@ std::vector<int> offsets_of(const std::vector<int>& counts, std::size_t& total) 
 
 }  // namespace
 
+double RankTeam::seconds_in_calls() { return seconds_in_calls_; }
+
+void RankTeam::check_lists(std::size_t to, std::size_t from) const {
+  if (to != static_cast<std::size_t>(size_) || from != static_cast<std::size_t>(size_))
+    throw std::invalid_argument("rank team exchange: one list per rank each way, not " +
+                                std::to_string(to) + " and " + std::to_string(from));
+}
+
 RankTeam RankTeam::world() {
   RankTeam team;
 #ifdef GRANJET_HAS_MPI
@@ -59,99 +98,115 @@ RankTeam RankTeam::world() {
 #ifdef GRANJET_HAS_MPI
 
 void RankTeam::max(std::span<double> values) const {
+  const InCall timing;
   if (alone() || values.empty()) return;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
                 MPI_COMM_WORLD);
 }
 
 void RankTeam::min(std::span<double> values) const {
+  const InCall timing;
   if (alone() || values.empty()) return;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN,
                 MPI_COMM_WORLD);
 }
 
 std::int64_t RankTeam::sum(std::int64_t value) const {
+  const InCall timing;
   if (alone()) return value;
   MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
   return value;
 }
 
 bool RankTeam::any(bool value) const {
+  const InCall timing;
   if (alone()) return value;
   int v = value ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
   return v != 0;
 }
 
-std::vector<std::byte> RankTeam::all_gather_bytes(std::vector<std::byte> mine) const {
-  if (alone()) return mine;
+void RankTeam::all_gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
+  const InCall timing;
+  if (alone()) {
+    copy_to(joined(mine.size()), mine);
+    return;
+  }
   std::vector<int> counts(size_);
   const int count = count_of(mine.size());
   MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
   std::size_t total = 0;
   const std::vector<int> offsets = offsets_of(counts, total);
-  std::vector<std::byte> joined(total);
-  MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(),
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined(total).data(), counts.data(), offsets.data(),
                  MPI_BYTE, MPI_COMM_WORLD);
-  return joined;
 }
 
-std::vector<std::byte> RankTeam::gather_bytes(std::vector<std::byte> mine) const {
-  if (alone()) return mine;
+void RankTeam::gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
+  const InCall timing;
+  if (alone()) {
+    copy_to(joined(mine.size()), mine);
+    return;
+  }
   std::vector<int> counts(size_);
   const int count = count_of(mine.size());
   MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
   std::size_t total = 0;
   std::vector<int> offsets(size_, 0);
   if (rank_ == 0) offsets = offsets_of(counts, total);
-  std::vector<std::byte> joined(total);
-  MPI_Gatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(), MPI_BYTE,
-              0, MPI_COMM_WORLD);
-  return joined;
+  MPI_Gatherv(mine.data(), count, MPI_BYTE, joined(total).data(), counts.data(), offsets.data(),
+              MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-void RankTeam::broadcast_bytes(std::vector<std::byte>& bytes) const {
+void RankTeam::broadcast_bytes(std::span<std::byte> root_bytes, const Room& bytes) const {
+  const InCall timing;
   if (alone()) return;
-  std::uint64_t size = bytes.size();
+  std::uint64_t size = root_bytes.size();
   MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-  bytes.resize(size);
-  MPI_Bcast(bytes.data(), count_of(size), MPI_BYTE, 0, MPI_COMM_WORLD);
+  const std::span<std::byte> here = rank_ == 0 ? root_bytes : bytes(size);
+  MPI_Bcast(here.data(), count_of(size), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-std::vector<std::vector<std::byte>> RankTeam::exchange_bytes(
-    const std::vector<std::vector<std::byte>>& to, std::span<const int> partners) const {
-  if (to.size() != static_cast<std::size_t>(size_))
-    throw std::invalid_argument("rank team exchange: one message per rank");
-  std::vector<std::vector<std::byte>> from(size_);
+void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
+                              std::span<const int> partners, bool sizes_known,
+                              const RoomOf& from) const {
+  const InCall timing;
   if (alone()) {
-    if (!partners.empty()) from[0] = to[0];
-    return from;
+    for (int r : partners) copy_to(from(r, to[r].size()), to[r], sizes_known);
+    return;
   }
-  const std::span<const int> with = partners;
-  // Sizes first, then the messages; the tags keep the two rounds apart.
-  constexpr int kSizeTag = 11, kDataTag = 12;
+  constexpr int kSizeTag = 11, kDataTag = 12;  // the tags keep the two rounds apart
   std::vector<std::uint64_t> incoming(size_, 0), outgoing(size_, 0);
   std::vector<MPI_Request> requests;
-  for (int r : with) {
-    outgoing[r] = to[r].size();
-    requests.emplace_back();
-    MPI_Irecv(&incoming[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
-    requests.emplace_back();
-    MPI_Isend(&outgoing[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
+  requests.reserve(2 * partners.size());
+  if (!sizes_known) {
+    for (int r : partners) {
+      outgoing[r] = to[r].size();
+      requests.emplace_back();
+      MPI_Irecv(&incoming[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
+      requests.emplace_back();
+      MPI_Isend(&outgoing[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
+    }
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+    requests.clear();
   }
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  requests.clear();
-  for (int r : with) {
-    from[r].resize(incoming[r]);
+  std::vector<std::span<std::byte>> inbox(size_);
+  for (int r : partners) {
+    inbox[r] = from(r, incoming[r]);
     requests.emplace_back();
-    MPI_Irecv(from[r].data(), count_of(incoming[r]), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
+    MPI_Irecv(inbox[r].data(), count_of(inbox[r].size()), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
               &requests.back());
     requests.emplace_back();
     MPI_Isend(to[r].data(), count_of(to[r].size()), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
               &requests.back());
   }
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  return from;
+  std::vector<MPI_Status> statuses(requests.size());
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), statuses.data());
+  // A longer message than expected is MPI's truncation error; a shorter one is caught here.
+  for (std::size_t k = 0; k < partners.size(); ++k) {
+    int count = 0;
+    MPI_Get_count(&statuses[2 * k], MPI_BYTE, &count);
+    check_received(partners[k], static_cast<std::size_t>(count), inbox[partners[k]].size());
+  }
 }
 
 MpiSession::MpiSession() {
@@ -178,14 +233,17 @@ void RankTeam::max(std::span<double>) const {}
 void RankTeam::min(std::span<double>) const {}
 std::int64_t RankTeam::sum(std::int64_t value) const { return value; }
 bool RankTeam::any(bool value) const { return value; }
-std::vector<std::byte> RankTeam::all_gather_bytes(std::vector<std::byte> mine) const {
-  return mine;
+void RankTeam::all_gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
+  copy_to(joined(mine.size()), mine);
 }
-std::vector<std::byte> RankTeam::gather_bytes(std::vector<std::byte> mine) const { return mine; }
-void RankTeam::broadcast_bytes(std::vector<std::byte>&) const {}
-std::vector<std::vector<std::byte>> RankTeam::exchange_bytes(
-    const std::vector<std::vector<std::byte>>& to, std::span<const int>) const {
-  return to;
+void RankTeam::gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
+  copy_to(joined(mine.size()), mine);
+}
+void RankTeam::broadcast_bytes(std::span<std::byte>, const Room&) const {}
+void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
+                              std::span<const int> partners, bool sizes_known,
+                              const RoomOf& from) const {
+  for (int r : partners) copy_to(from(r, to[r].size()), to[r], sizes_known);
 }
 
 MpiSession::MpiSession() {

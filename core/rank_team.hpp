@@ -8,7 +8,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -32,6 +35,10 @@ class RankTeam {
   int size() const { return size_; }
   bool alone() const { return size_ == 1; }
 
+  // Wall seconds this process has spent in the calls of teams of several ranks, waiting for
+  // the others included: what is not its own work.
+  static double seconds_in_calls();
+
   // Element by element over the ranks, in place: exact in any order.
   void max(std::span<double> values) const;
   void min(std::span<double> values) const;
@@ -42,23 +49,24 @@ class RankTeam {
   template <class T>
   std::vector<T> all_gather(std::span<const T> mine) const {
     static_assert(std::is_trivially_copyable_v<T>);
-    std::vector<std::byte> joined = all_gather_bytes(as_bytes(mine));
-    return from_bytes<T>(joined);
+    std::vector<T> joined;
+    all_gather_bytes(std::as_bytes(mine), [&](std::size_t bytes) { return room(joined, bytes); });
+    return joined;
   }
   // Every rank's values, joined in rank order, on rank 0 (empty elsewhere).
   template <class T>
   std::vector<T> gather(std::span<const T> mine) const {
     static_assert(std::is_trivially_copyable_v<T>);
-    std::vector<std::byte> joined = gather_bytes(as_bytes(mine));
-    return from_bytes<T>(joined);
+    std::vector<T> joined;
+    gather_bytes(std::as_bytes(mine), [&](std::size_t bytes) { return room(joined, bytes); });
+    return joined;
   }
   // Rank 0's values, on every rank.
   template <class T>
   void broadcast(std::vector<T>& values) const {
     static_assert(std::is_trivially_copyable_v<T>);
-    std::vector<std::byte> bytes = as_bytes(std::span<const T>(values));
-    broadcast_bytes(bytes);
-    values = from_bytes<T>(bytes);
+    broadcast_bytes(std::as_writable_bytes(std::span<T>(values)),
+                    [&](std::size_t bytes) { return room(values, bytes); });
   }
   template <class T>
   void broadcast(T& value) const {
@@ -66,46 +74,56 @@ class RankTeam {
     broadcast(one);
     value = one[0];
   }
-  // Sends to[r] to rank r and returns what each rank sent here, by rank (to.size() == size()):
-  // with every rank.
+  // Sends to[r] to each rank r of `partners` and receives what r sends here into from[r]
+  // (both of size() lists). The same relation seen from both sides: only those ranks take
+  // part, and none at all for no partners. The lists are the caller's, kept from call to call
+  // so that their memory is reused. With `sizes_known`, each from[r] already has the length
+  // that r sends (one message each way; another length is an error); otherwise a round of
+  // sizes comes first.
+  template <class T>
+  void exchange_into(const std::vector<std::vector<T>>& to, std::vector<std::vector<T>>& from,
+                     std::span<const int> partners, bool sizes_known) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    check_lists(to.size(), from.size());
+    std::vector<std::span<const std::byte>> out(to.size());
+    for (std::size_t r = 0; r < to.size(); ++r) out[r] = std::as_bytes(std::span<const T>(to[r]));
+    exchange_bytes(out, partners, sizes_known, [&](int r, std::size_t bytes) {
+      return sizes_known ? std::as_writable_bytes(std::span<T>(from[r])) : room(from[r], bytes);
+    });
+  }
+  // The same into new lists, sizes unknown.
+  template <class T>
+  std::vector<std::vector<T>> exchange_with(const std::vector<std::vector<T>>& to,
+                                            std::span<const int> partners) const {
+    std::vector<std::vector<T>> from(to.size());
+    exchange_into(to, from, partners, false);
+    return from;
+  }
+  // With every rank.
   template <class T>
   std::vector<std::vector<T>> exchange(const std::vector<std::vector<T>>& to) const {
     std::vector<int> all(size_);
     for (int r = 0; r < size_; ++r) all[r] = r;
     return exchange_with(to, all);
   }
-  // The same with `partners` only (empty sends included), the same relation seen from both
-  // sides: only those ranks take part, and none at all for no partners.
-  template <class T>
-  std::vector<std::vector<T>> exchange_with(const std::vector<std::vector<T>>& to,
-                                            std::span<const int> partners) const {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::vector<std::vector<std::byte>> bytes(to.size());
-    for (std::size_t r = 0; r < to.size(); ++r) bytes[r] = as_bytes(std::span<const T>(to[r]));
-    std::vector<std::vector<std::byte>> got = exchange_bytes(bytes, partners);
-    std::vector<std::vector<T>> out(got.size());
-    for (std::size_t r = 0; r < got.size(); ++r) out[r] = from_bytes<T>(got[r]);
-    return out;
-  }
 
  private:
+  // Where `bytes` of received values go: `values` resized to hold them.
   template <class T>
-  static std::vector<std::byte> as_bytes(std::span<const T> values) {
-    std::vector<std::byte> bytes(values.size_bytes());
-    if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
-    return bytes;
+  static std::span<std::byte> room(std::vector<T>& values, std::size_t bytes) {
+    if (bytes % sizeof(T) != 0)
+      throw std::logic_error("rank team: " + std::to_string(bytes) + " bytes are not whole values");
+    values.resize(bytes / sizeof(T));
+    return std::as_writable_bytes(std::span<T>(values));
   }
-  template <class T>
-  static std::vector<T> from_bytes(const std::vector<std::byte>& bytes) {
-    std::vector<T> values(bytes.size() / sizeof(T));
-    if (!values.empty()) std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-    return values;
-  }
-  std::vector<std::byte> all_gather_bytes(std::vector<std::byte> mine) const;
-  std::vector<std::byte> gather_bytes(std::vector<std::byte> mine) const;
-  void broadcast_bytes(std::vector<std::byte>& bytes) const;
-  std::vector<std::vector<std::byte>> exchange_bytes(const std::vector<std::vector<std::byte>>& to,
-                                                     std::span<const int> partners) const;
+  using Room = std::function<std::span<std::byte>(std::size_t bytes)>;
+  using RoomOf = std::function<std::span<std::byte>(int rank, std::size_t bytes)>;
+  void check_lists(std::size_t to, std::size_t from) const;
+  void all_gather_bytes(std::span<const std::byte> mine, const Room& joined) const;
+  void gather_bytes(std::span<const std::byte> mine, const Room& joined) const;
+  void broadcast_bytes(std::span<std::byte> root_bytes, const Room& bytes) const;
+  void exchange_bytes(std::span<const std::span<const std::byte>> to, std::span<const int> partners,
+                      bool sizes_known, const RoomOf& from) const;
 
   int rank_ = 0;
   int size_ = 1;

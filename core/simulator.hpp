@@ -52,6 +52,11 @@ struct SimStats {
   std::int64_t events = 0;   // event-driven only
   std::int64_t collisions = 0;
   std::int64_t cell_crossings = 0;
+  // One run over MPI ranks (soft_dem/work_balance.hpp): how many, the busiest rank's work over
+  // the ranks' mean, and how often the parts were cut anew. Not kept in checkpoints.
+  int ranks = 1;
+  double imbalance = 1.0;
+  std::int64_t recuts = 0;
 };
 
 inline void put_stats(StateArchive& a, const std::string& name, const SimStats& s) {

@@ -54,6 +54,8 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
   j["steps"] = s.steps;
   j["contacts"] = s.contacts;
   j["neighbour_rebuilds"] = s.neighbour_rebuilds;
+  if (s.ranks > 1)
+    j["ranks"] = {{"count", s.ranks}, {"imbalance", s.imbalance}, {"recuts", s.recuts}};
   j["wall_seconds"] = wall_seconds;
   j["cpu_seconds"] = cpu_seconds;  // of all threads: the rates below are per wall-second
   j["particle_steps"] = s.particle_steps;
@@ -84,6 +86,9 @@ std::string timing_text(const nlohmann::json& summary, const SimStats& s, bool e
   else
     timing << " for " << s.steps << " steps, " << summary["particle_steps_per_second"].get<double>()
            << " particle-steps/s\n";
+  if (s.ranks > 1)
+    timing << "over " << s.ranks << " ranks: imbalance " << s.imbalance
+           << " (the busiest rank's work over the mean), parts cut anew " << s.recuts << " times\n";
   if (summary.contains("measured")) {
     timing << "measured";
     for (const auto& [key, value] : summary["measured"].items())
@@ -372,11 +377,27 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
 const std::vector<std::string> kResumableKeys = {"run.t_end", "run.threads",
                                                  "run.progress_interval"};
 
+void refuse_several_ranks(const std::string& command, const std::string& backend) {
+  const int ranks = launched_ranks();
+  if (ranks <= 1 || backend != "event_driven") return;
+  throw InputError("mpirun -n " + std::to_string(ranks),
+                   "granjet " + command +
+                       " runs as one process: the event-driven backend handles the collisions "
+                       "one at a time in one global order of time, which ranks could share only "
+                       "through a parallel event calendar (docs/event_driven.md). Run it without "
+                       "mpirun (run.threads = N shares one machine's cores), spread a soft-DEM "
+                       "run with mpirun -n K granjet run, or many runs with mpirun -n K granjet "
+                       "campaign");
+}
+
 int resume_command(const ResumeOptions& options, std::ostream& out) {
   const std::filesystem::path& partial = options.partial;
   if (partial.extension() != ".partial")
     throw InputError(partial.string(), "is not a run's .partial file (RUN.h5.partial)");
   const analysis::FileSummary stored = analysis::read_summary(partial);
+  refuse_several_ranks("resume", stored.backend);
+  const MpiSession mpi;  // for mpirun -n K with K > 1: a checkpoint resumes on any K
+  const bool leader = RankTeam::world().rank() == 0;
   if (!stored.checkpoint)
     throw InputError(partial.string(),
                      "holds no checkpoint: the run stopped before its first "
@@ -408,9 +429,11 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
   std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
   std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });
-  check_outputs(partial, outputs);
+  if (leader) check_outputs(partial, outputs);  // rank 0 writes: the others would find its files
+  // Every rank reads it; rank 0 writes to it only once the simulator is made, which all ranks
+  // make together.
   const StateArchive checkpoint = analysis::read_checkpoint(partial);
-  if (!options.quiet)
+  if (!options.quiet && leader)
     out << "resuming " << out_file.string() << " at t = " << stored.checkpoint_time << "\n";
   return with_dimension(scene.dimension, [&](auto d) {
     return run_scene<d>(scene, run, out_file, out, &checkpoint);

@@ -39,6 +39,11 @@ struct RunOptions {
   std::vector<std::uint64_t> seeds;
 };
 
+// Started by mpirun -n K with K > 1, a soft-DEM run or resume spreads over the ranks
+// (run/rank_leader.hpp); `command` on the event-driven backend refuses (InputError) before it
+// writes anything.
+void refuse_several_ranks(const std::string& command, const std::string& backend);
+
 // Returns the process exit code: 0 done, 3 blow-up (the output kept as .partial). Throws
 // InputError (exit 2) for bad input before any file is written.
 int run_command(const RunOptions& options, std::ostream& out);

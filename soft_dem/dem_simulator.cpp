@@ -86,11 +86,14 @@ auto DemSimulator<D, Law, kMono, Space>::register_phases(PhaseProfile& profile) 
   using Kind = PhaseProfile::Kind;
   return {profile.phase("rebuild: histories by grain ids", Kind::kParallel),
           profile.phase("rebuild: checks, removal, cell sort", Kind::kParallel),
+          profile.phase("ranks: grains to their owners", Kind::kSerial),
           profile.phase("rebuild: pair list", Kind::kParallel),
           profile.phase("rebuild: histories onto the new list", Kind::kParallel),
           profile.phase("tethered target", Kind::kParallel),
           profile.phase("plate", Kind::kParallel),
-          profile.phase("Verlet predictor", Kind::kParallel)};
+          profile.phase("Verlet predictor", Kind::kParallel),
+          profile.phase("ranks: ghost states", Kind::kSerial),
+          profile.phase("ranks: agreement (waits for the slowest)", Kind::kSerial)};
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -284,7 +287,6 @@ template <class Advance, class Coast>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
 double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
-  const auto start = std::chrono::steady_clock::now();
   if (!quiet_.fresh()) {
     const auto radius = p_.radius();
     quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
@@ -334,11 +336,10 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
   stats_.contacts = static_cast<std::int64_t>(contact_pair.size());
   if (!over_ranks()) {
     quiet_.after_pass(trusted_pushed.load(std::memory_order_relaxed));
-  } else {  // the ranks agree on it in agree(); a rank counts the contacts of its own rows
+  } else {  // the ranks agree on it in agree(); the contacts are counted when asked for
     trusted_pushed_ = trusted_pushed.load(std::memory_order_relaxed);
     pass_pending_ = true;
-    stats_.contacts = 0;
-    for (std::uint32_t k : contact_pair) stats_.contacts += owned_[pair_row_[k]];
+    contacts_pending_ = true;
   }
   const std::size_t first_blown = outcome.first_too_deep;
   const std::int64_t plate_blown =
@@ -356,7 +357,6 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
   // advance zeroed force_prev_ as it went: now F(t) becomes F(t-dt) and the zeros the next F.
   force_.swap(force_prev_);
   if constexpr (kRotation) torque_.swap(torque_prev_);
-  busy_seconds_ += seconds_since(start);
   return outcome.largest;
 }
 
@@ -531,9 +531,17 @@ void DemSimulator<D, Law, kMono, Space>::rebuild() {
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
   std::optional<PhaseProfile::Timer> timing(std::in_place, &this->profile(), phase_.rebuild_sort);
+  if (contacts_pending_) {  // before the list they index changes
+    stats_.contacts = own_contacts();
+    contacts_pending_ = false;
+  }
   check_finite();
   remove_escaped();
-  if (over_ranks()) distribute(history);
+  if (over_ranks()) {
+    timing.emplace(&this->profile(), phase_.rebuild_moves);
+    distribute(history);
+    timing.emplace(&this->profile(), phase_.rebuild_sort);
+  }
   const auto radius = p_.radius();
   double max_radius = radius.empty() ? 0.0 : radius[0];
   if constexpr (!kMono) {
@@ -592,7 +600,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
         pairs_, space_, threads_);
     for (std::int64_t i = 0; i < n; ++i)
       if (!owned_[i]) forced_[i] |= kGhostBit;
-    domain_->index_halo([this](GrainId id) { return index_of_id_[id]; });
+    domain_->list_halo(p_.position(), p_.id(), owned_);
   }
   timing.emplace(&this->profile(), phase_.rebuild_rows);
   pair_row_.resize(pairs_.size());
@@ -772,9 +780,19 @@ template <int D, class Law, bool kMono, class Space>
 const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles() const {
   if (!over_ranks()) return p_;
   if (!whole_fresh_) {
+    struct Grain {  // what Particles holds of a grain
+      GrainId id;
+      GrainKind kind;
+      double x[D], v[D], w[kSpinWidth<D>], radius, mass;
+    };
     whole_ = Particles<D>();
-    for (const GrainRecord<D>&g : in_whole_order<GrainRecord<D>>(
-             [&](std::size_t i, auto emit) { emit(record_of(i, false)); })) {
+    for (const Grain& g : in_whole_order<Grain>([&](std::size_t i, auto emit) {
+           Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
+           put<D>(g.x, p_.position()[i]);
+           put<D>(g.v, p_.velocity()[i]);
+           put<D>(g.w, p_.spin()[i]);
+           emit(g);
+         })) {
       whole_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
       whole_.spin().back() = get<D, Spin<D>>(g.w);
     }
@@ -788,7 +806,10 @@ SimStats DemSimulator<D, Law, kMono, Space>::stats() const {
   if (!over_ranks()) return stats_;
   SimStats s = stats_;  // steps, rebuilds and removals are counted alike on every rank
   s.particle_steps = domain_->team().sum(stats_.particle_steps);
-  s.contacts = domain_->team().sum(stats_.contacts);
+  s.contacts = domain_->team().sum(contacts_pending_ ? own_contacts() : stats_.contacts);
+  s.ranks = domain_->ranks();
+  s.imbalance = balance_.imbalance();
+  s.recuts = balance_.recuts();
   return s;
 }
 

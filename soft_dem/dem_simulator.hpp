@@ -32,6 +32,7 @@
 #include "soft_dem/plate.hpp"
 #include "soft_dem/quiet_pairs.hpp"
 #include "soft_dem/tethered_wall.hpp"
+#include "soft_dem/work_balance.hpp"
 
 namespace granjet::dem {
 
@@ -63,7 +64,8 @@ class DemSimulator final : public Simulator<D> {
 
   // The simulator's own phases in the profile (the pass's and the quiet pairs' register theirs).
   struct Phases {
-    int rebuild_ids, rebuild_sort, rebuild_pairs, rebuild_rows, tethers, plate, predictor;
+    int rebuild_ids, rebuild_sort, rebuild_moves, rebuild_pairs, rebuild_rows, tethers, plate,
+        predictor, ghosts, agree;
   };
   static Phases register_phases(PhaseProfile& profile);
   PhaseProfile::Timer timer(int phase) { return {&this->profile(), phase}; }
@@ -97,7 +99,9 @@ class DemSimulator final : public Simulator<D> {
   // their contacts (those for the grains held here come back in `history`).
   void distribute(std::vector<History>& history);
   double grain_weight(std::size_t i) const;
-  GrainRecord<D> record_of(std::size_t i, bool ghost) const;
+  GrainRecord<D> record_of(std::size_t i) const;
+  // The contacts of the last pass in this rank's own rows.
+  std::int64_t own_contacts() const;
   // The ghosts' state from their owners: after each pass (the moves of Adams-Bashforth-2, the
   // corrector of velocity Verlet; Verlet's predictor moves a ghost as its owner does).
   void update_ghosts();
@@ -189,12 +193,11 @@ class DemSimulator final : public Simulator<D> {
   std::optional<BlowUpError> error_;  // a blow-up found here, to be raised on every rank
   bool trusted_pushed_ = false;       // found by this rank's pass, for agree()
   bool pass_pending_ = false;         // a pass ran since the last agree()
+  bool contacts_pending_ = false;     // a pass ran whose contacts stats_ does not count yet
   bool stop_agreed_ = false;          // some rank was asked to stop
   // forced_'s bit for a ghost: always pushed, so that no coasting loop counts its speed.
   static constexpr std::uint8_t kGhostBit = 4;
-  double busy_seconds_ = 0.0;  // this rank's time in force passes since the last cut
-  std::int64_t rebuilds_since_cut_ = 0;
-  double imbalance_ = 1.0;      // the ranks' slowest busy time over their mean
+  WorkBalance balance_;
   mutable Particles<D> whole_;  // particles() over ranks: all grains, on each rank
   mutable bool whole_fresh_ = false;
 };

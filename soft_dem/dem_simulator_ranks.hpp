@@ -16,15 +16,10 @@
 #include <tuple>
 #include <vector>
 
+#include "core/merge_runs.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace granjet::dem {
-
-// The parts are cut anew at a rebuild when the slowest rank's busy time since the last cut
-// exceeds the ranks' mean by this factor, and at least kRebuildsPerCut rebuilds have passed
-// (a cut gathers every grain's position on every rank).
-inline constexpr double kRecutImbalance = 1.1;
-inline constexpr std::int64_t kRebuildsPerCut = 8;
 
 // A grain's share of a rank's work: the listed pairs of its row, plus one for its update.
 template <int D, class Law, bool kMono, class Space>
@@ -34,11 +29,17 @@ double DemSimulator<D, Law, kMono, Space>::grain_weight(std::size_t i) const {
 }
 
 template <int D, class Law, bool kMono, class Space>
-GrainRecord<D> DemSimulator<D, Law, kMono, Space>::record_of(std::size_t i, bool ghost) const {
+std::int64_t DemSimulator<D, Law, kMono, Space>::own_contacts() const {
+  std::int64_t contacts = 0;
+  for (std::uint32_t k : pass_.history().pairs()) contacts += owned_[pair_row_[k]];
+  return contacts;
+}
+
+template <int D, class Law, bool kMono, class Space>
+GrainRecord<D> DemSimulator<D, Law, kMono, Space>::record_of(std::size_t i) const {
   GrainRecord<D> g{};
   g.id = p_.id()[i];
   g.kind = p_.kind()[i];
-  g.ghost = ghost;
   put<D>(g.x, p_.position()[i]);
   put<D>(g.v, p_.velocity()[i]);
   put<D>(g.w, p_.spin()[i]);
@@ -58,73 +59,89 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   const auto x = p_.position();
   for (std::size_t i = 0; i < n; ++i) index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
 
-  // Cut anew where the busy times grew uneven: each grain weighted by its pairs, scaled so
-  // that a rank's grains weigh its measured time.
-  ++rebuilds_since_cut_;
-  const std::vector<double> busy = team.all_gather<double>(std::vector<double>{busy_seconds_});
-  const double mean = std::accumulate(busy.begin(), busy.end(), 0.0) / busy.size();
-  if (mean > 0.0) imbalance_ = *std::max_element(busy.begin(), busy.end()) / mean;
-  if (rebuilds_since_cut_ >= kRebuildsPerCut && imbalance_ > kRecutImbalance) {
+  // Cut anew where the work grew uneven: each grain weighted by its pairs, scaled so that a
+  // rank's grains weigh its measured work.
+  if (const std::optional<double> work = balance_.at_rebuild(team)) {
     std::vector<double> weight(n, 0.0);
     double mine = 0.0;
     for (std::size_t i = 0; i < n; ++i)
       if (owned_[i]) mine += weight[i] = grain_weight(i);
-    const double scale = mine > 0.0 ? busy_seconds_ / mine : 1.0;
+    const double scale = mine > 0.0 ? *work / mine : 1.0;
     for (double& w : weight) w *= scale;
     domain.partition(x, weight, owned_, false);
-    rebuilds_since_cut_ = 0;
-    busy_seconds_ = 0.0;
   }
 
-  // Each owned grain to its owner and, as a ghost, to the ranks within reach.
-  const int ranks = domain.ranks();
-  std::vector<std::vector<GrainRecord<D>>> to(ranks);
+  // Each owned grain that leaves goes to its owner and, as a ghost, to the other ranks within
+  // reach. It stays here, in place, when it stays owned or becomes a ghost here. The ghosts
+  // held until now are dropped: their owners send them anew.
+  const int me = domain.rank();
+  std::vector<std::vector<GrainRecord<D>>> to(domain.ranks());
   std::vector<int> owner(n, -1);
-  std::vector<Vec<D>>* shear = plate_ && !plate_->shear().empty() ? &plate_->shear() : nullptr;
+  std::vector<std::uint32_t> keep;
+  std::vector<std::uint8_t> keep_owned;
   for (std::size_t i = 0; i < n; ++i) {
     if (!owned_[i]) continue;
     owner[i] = domain.owner_of(x[i]);
-    GrainRecord<D> g = record_of(i, false);
-    g.owner = owner[i];
-    to[owner[i]].push_back(g);
-    g.ghost = 1;
-    domain.for_each_ghost_rank(x[i], owner[i], [&](int r) { to[r].push_back(g); });
+    bool here = owner[i] == me;
+    std::optional<GrainRecord<D>> record;
+    const auto send = [&](int r, bool ghost) {
+      if (!record) record = record_of(i);
+      record->ghost = ghost;
+      to[r].push_back(*record);
+    };
+    if (!here) send(owner[i], false);
+    domain.for_each_ghost_rank(x[i], owner[i], [&](int r) {
+      if (r == me)
+        here = true;
+      else
+        send(r, true);
+    });
+    if (!here) continue;
+    keep.push_back(static_cast<std::uint32_t>(i));
+    keep_owned.push_back(owner[i] == me);
   }
   // A contact's history goes to the owners of its grains, from the owner of its first.
-  std::vector<std::vector<HistoryRecord<D>>> history_to(ranks);
+  std::vector<std::vector<HistoryRecord<D>>> history_to(domain.ranks());
+  std::vector<History> kept_history;
   for (const History& h : history) {
     const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
     if (a == kRemoved || b == kRemoved || !owned_[a]) continue;
-    HistoryRecord<D> r{h.a, h.b, {}};
-    put<D>(r.shear, h.shear);
     const int owner_a = owner[a], owner_b = owned_[b] ? owner[b] : domain.owner_of(x[b]);
-    history_to[owner_a].push_back(r);
-    if (owner_b != owner_a) history_to[owner_b].push_back(r);
+    const auto send = [&](int r) {
+      if (r == me) {
+        kept_history.push_back(h);
+        return;
+      }
+      HistoryRecord<D> record{h.a, h.b, {}};
+      put<D>(record.shear, h.shear);
+      history_to[r].push_back(record);
+    };
+    send(owner_a);
+    if (owner_b != owner_a) send(owner_b);
   }
-  const std::vector<GrainRecord<D>> held = domain.move_grains(to);
-  history.clear();
-  for (const HistoryRecord<D>& r : domain.move_histories(history_to))
+  const std::vector<GrainRecord<D>> arrived = domain.move(to);
+  history = std::move(kept_history);
+  for (const HistoryRecord<D>& r : domain.move(history_to))
     history.push_back({r.a, r.b, get<D, Vec<D>>(r.shear)});
 
   for (GrainId id : p_.id()) index_of_id_[id] = kRemoved;
-  Particles<D> now;
-  const std::size_t m = held.size();
-  force_prev_.resize(m);
-  torque_prev_.resize(m);
-  inv_inertia_.resize(m);
-  owned_.resize(m);
-  if (shear) plate_->shear().resize(m);
-  for (std::size_t k = 0; k < m; ++k) {
-    const GrainRecord<D>& g = held[k];
-    now.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
-    now.spin()[k] = get<D, Spin<D>>(g.w);
-    force_prev_[k] = get<D, Vec<D>>(g.force_prev);
-    torque_prev_[k] = get<D, Spin<D>>(g.torque_prev);
-    inv_inertia_[k] = now.inverse_mass()[k] / (Dim<D>::kInertiaFactor * g.radius * g.radius);
-    owned_[k] = !g.ghost;
-    if (shear) plate_->shear()[k] = get<D, Vec<D>>(g.plate_shear);
+  p_.gather(keep, threads_);
+  Particles<D>::gather_one(force_prev_, keep, threads_);
+  Particles<D>::gather_one(torque_prev_, keep, threads_);
+  Particles<D>::gather_one(inv_inertia_, keep, threads_);
+  if (plate_) plate_->gather(keep);
+  owned_ = std::move(keep_owned);
+  std::vector<Vec<D>>* shear = plate_ && !plate_->shear().empty() ? &plate_->shear() : nullptr;
+  for (const GrainRecord<D>& g : arrived) {
+    p_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
+    p_.spin().back() = get<D, Spin<D>>(g.w);
+    force_prev_.push_back(get<D, Vec<D>>(g.force_prev));
+    torque_prev_.push_back(get<D, Spin<D>>(g.torque_prev));
+    inv_inertia_.push_back(p_.inverse_mass().back() /
+                           (Dim<D>::kInertiaFactor * g.radius * g.radius));
+    owned_.push_back(!g.ghost);
+    if (shear) shear->push_back(get<D, Vec<D>>(g.plate_shear));
   }
-  p_ = std::move(now);
   whole_fresh_ = false;
 }
 
@@ -154,29 +171,38 @@ auto DemSimulator<D, Law, kMono, Space>::whole_frame(double cut) const ->
   return CellGrid<D>::frame_of(lo, hi, cut, static_cast<std::size_t>(grains));
 }
 
+// A ghost's state as its owner sends it each step: x, v, w, the forced bits and F(t - dt)
+// (QuietPairs' coasting test reads it), and for velocity Verlet also M(t - dt), which its
+// predictor needs (Adams-Bashforth-2 integrates no ghost: the owner's state overwrites what
+// the pass made of it).
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::update_ghosts() {
+  const PhaseProfile::Timer timing = timer(phase_.ghosts);
+  constexpr std::size_t S = kSpinWidth<D>, kForced = 3 * D + S, kTorque = kForced + 1;
+  const bool torque = scene_.run.integrator == IntegratorKind::kVelocityVerlet;
   domain_->update_ghosts(
-      [&](std::uint32_t i, GhostState<D>& s) {
-        put<D>(s.x, p_.position()[i]);
-        put<D>(s.v, p_.velocity()[i]);
-        put<D>(s.w, p_.spin()[i]);
-        put<D>(s.force_prev, force_prev_[i]);
-        put<D>(s.torque_prev, torque_prev_[i]);
-        s.forced = forced_[i];
+      kTorque + (torque ? S : 0),
+      [&](std::uint32_t i, double* row) {
+        put<D>(row, p_.position()[i]);
+        put<D>(row + D, p_.velocity()[i]);
+        put<D>(row + 2 * D, force_prev_[i]);
+        put<D>(row + 3 * D, p_.spin()[i]);
+        row[kForced] = forced_[i];
+        if (torque) put<D>(row + kTorque, torque_prev_[i]);
       },
-      [&](std::uint32_t i, const GhostState<D>& s) {
-        p_.position()[i] = get<D, Vec<D>>(s.x);
-        p_.velocity()[i] = get<D, Vec<D>>(s.v);
-        p_.spin()[i] = get<D, Spin<D>>(s.w);
-        force_prev_[i] = get<D, Vec<D>>(s.force_prev);
-        torque_prev_[i] = get<D, Spin<D>>(s.torque_prev);
-        forced_[i] = s.forced | kGhostBit;
+      [&](std::uint32_t i, const double* row) {
+        p_.position()[i] = get<D, Vec<D>>(row);
+        p_.velocity()[i] = get<D, Vec<D>>(row + D);
+        force_prev_[i] = get<D, Vec<D>>(row + 2 * D);
+        p_.spin()[i] = get<D, Spin<D>>(row + 3 * D);
+        forced_[i] = static_cast<std::uint8_t>(row[kForced]) | kGhostBit;
+        if (torque) torque_prev_[i] = get<D, Spin<D>>(row + kTorque);
       });
 }
 
 template <int D, class Law, bool kMono, class Space>
 double DemSimulator<D, Law, kMono, Space>::agree(double own_largest_speed2) {
+  const PhaseProfile::Timer timing = timer(phase_.agree);
   const Domain<D>& domain = *domain_;
   // A ghost trusted quiet here that its owner's pass pushed (bit 1 after the ageing) ends this
   // rank's classification as a trusted grain of its own would.
@@ -247,13 +273,15 @@ std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value
     std::uint32_t nth = 0;
     value_of(i, [&](const Value& v) { mine.push_back({whole_cell_[i], p_.id()[i], nth++, v}); });
   }
-  std::vector<Keyed> all = domain_->team().template all_gather<Keyed>(mine);
-  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) {
-    return std::tie(a.cell, a.id, a.nth) < std::tie(b.cell, b.id, b.nth);
-  });
+  // Each rank's values come in the whole order: merging its run with the others' sorts them.
+  const std::vector<Keyed> all = domain_->team().template all_gather<Keyed>(mine);
   std::vector<Value> out;
   out.reserve(all.size());
-  for (const Keyed& k : all) out.push_back(k.value);
+  for (std::uint32_t k : merged_run_order(all.size(), [&](std::size_t a, std::size_t b) {
+         return std::tie(all[a].cell, all[a].id, all[a].nth) <
+                std::tie(all[b].cell, all[b].id, all[b].nth);
+       }))
+    out.push_back(all[k].value);
   return out;
 }
 

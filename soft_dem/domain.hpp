@@ -20,6 +20,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/dim.hpp"
@@ -48,21 +49,12 @@ V get(const double* from) {
 template <int D>
 struct GrainRecord {
   GrainId id;
-  std::int32_t owner;  // the rank that owns it from this rebuild on
   GrainKind kind;
   std::uint8_t ghost;  // a copy for a rank that does not own it
   double x[D], v[D], w[kSpinWidth<D>];
   double radius, mass;
   double force_prev[D], torque_prev[kSpinWidth<D>];
   double plate_shear[D];
-};
-
-// What an owner sends of a ghost at every step.
-template <int D>
-struct GhostState {
-  double x[D], v[D], w[kSpinWidth<D>];
-  double force_prev[D], torque_prev[kSpinWidth<D>];
-  std::uint8_t forced;
 };
 
 // A touching pair's tangential history, by grain ids.
@@ -116,89 +108,76 @@ class Domain {
     });
   }
 
-  // Sends to[r] to rank r; returns every record sent here (this rank's own to[rank()]
-  // included). Then lists the halo by id: the ghosts each owner sends here and
-  // the ghosts of this rank's own grains, for each rank that holds them, both in id order.
-  std::vector<GrainRecord<D>> move_grains(const std::vector<std::vector<GrainRecord<D>>>& to) {
-    std::vector<GrainRecord<D>> all;
-    for (const std::vector<GrainRecord<D>>& from : team_.exchange(to))
+  // Sends to[r] to every other rank r (to[rank()] is not sent) and returns what they sent
+  // here, in rank order. Collective.
+  template <class Record>
+  std::vector<Record> move(const std::vector<std::vector<Record>>& to) const {
+    std::vector<int> others;
+    for (int r = 0; r < ranks(); ++r)
+      if (r != rank()) others.push_back(r);
+    std::vector<Record> all;
+    for (const std::vector<Record>& from : team_.exchange_with(to, others))
       all.insert(all.end(), from.begin(), from.end());
-    send_ids_.assign(ranks(), {});
-    recv_ids_.assign(ranks(), {});
-    for (const GrainRecord<D>& g : all) {
-      if (g.ghost) {
-        recv_ids_[g.owner].push_back(g.id);
-      } else {
-        Vec<D> x;
-        for (int d = 0; d < D; ++d) x[d] = g.x[d];
-        for_each_ghost_rank(x, rank(), [&](int r) { send_ids_[r].push_back(g.id); });
-      }
+    return all;
+  }
+
+  // Lists the halo once the grains held here are in their places: each owned grain within
+  // reach of another part goes there, each ghost comes from the owner of its position. Both
+  // sides list a rank's ghosts in id order, so that the states need no ids.
+  void list_halo(std::span<const Vec<D>> x, std::span<const GrainId> id,
+                 std::span<const std::uint8_t> owned) {
+    using Listed = std::pair<GrainId, std::uint32_t>;
+    std::vector<std::vector<Listed>> send(ranks()), recv(ranks());
+    for (std::uint32_t i = 0; i < x.size(); ++i) {
+      if (owned[i])
+        for_each_ghost_rank(x[i], rank(), [&](int r) { send[r].push_back({id[i], i}); });
+      else
+        recv[owner_of(x[i])].push_back({id[i], i});
     }
+    const auto indices = [](std::vector<Listed>& listed) {
+      std::sort(listed.begin(), listed.end());
+      std::vector<std::uint32_t> index(listed.size());
+      for (std::size_t k = 0; k < listed.size(); ++k) index[k] = listed[k].second;
+      return index;
+    };
     partners_.clear();
-    for (int r = 0; r < ranks(); ++r) {
-      std::sort(send_ids_[r].begin(), send_ids_[r].end());
-      std::sort(recv_ids_[r].begin(), recv_ids_[r].end());
-      if (!send_ids_[r].empty() || !recv_ids_[r].empty()) partners_.push_back(r);
-    }
-    return all;
-  }
-
-  std::vector<HistoryRecord<D>> move_histories(
-      const std::vector<std::vector<HistoryRecord<D>>>& to) const {
-    std::vector<HistoryRecord<D>> all;
-    for (const std::vector<HistoryRecord<D>>& from : team_.exchange(to))
-      all.insert(all.end(), from.begin(), from.end());
-    return all;
-  }
-
-  // The halo's local indices, once the grains moved by move_grains are in their places.
-  template <class IndexOf>
-  void index_halo(IndexOf&& index_of) {
     send_index_.assign(ranks(), {});
     recv_index_.assign(ranks(), {});
     for (int r = 0; r < ranks(); ++r) {
-      for (GrainId id : send_ids_[r]) send_index_[r].push_back(index_of(id));
-      for (GrainId id : recv_ids_[r]) recv_index_[r].push_back(index_of(id));
+      send_index_[r] = indices(send[r]);
+      recv_index_[r] = indices(recv[r]);
+      if (!send_index_[r].empty() || !recv_index_[r].empty()) partners_.push_back(r);
     }
+    outbox_.assign(ranks(), {});
+    inbox_.assign(ranks(), {});
   }
 
-  // Every owner sends its ghosts' state to the ranks that hold them. Collective.
+  // Every owner sends its ghosts' states, `width` doubles each (pack(i, row) writes grain i's,
+  // unpack(i, row) reads them), to the ranks that hold them. Collective.
   template <class Pack, class Unpack>
-  void update_ghosts(Pack&& pack, Unpack&& unpack) const {
-    std::vector<std::vector<GhostState<D>>> to(ranks());
+  void update_ghosts(std::size_t width, Pack&& pack, Unpack&& unpack) {
     for (int r : partners_) {
-      to[r].resize(send_index_[r].size());
-      for (std::size_t k = 0; k < send_index_[r].size(); ++k) pack(send_index_[r][k], to[r][k]);
+      outbox_[r].resize(send_index_[r].size() * width);
+      for (std::size_t k = 0; k < send_index_[r].size(); ++k)
+        pack(send_index_[r][k], &outbox_[r][k * width]);
+      inbox_[r].resize(recv_index_[r].size() * width);
     }
-    const std::vector<std::vector<GhostState<D>>> from = team_.exchange_with(to, partners_);
-    for (int r : partners_) {
-      if (from[r].size() != recv_index_[r].size())
-        throw std::logic_error("rank " + std::to_string(r) + " sent " +
-                               std::to_string(from[r].size()) + " ghosts, not " +
-                               std::to_string(recv_index_[r].size()));
-      for (std::size_t k = 0; k < from[r].size(); ++k) unpack(recv_index_[r][k], from[r][k]);
-    }
+    team_.exchange_into(outbox_, inbox_, partners_, true);
+    for (int r : partners_)
+      for (std::size_t k = 0; k < recv_index_[r].size(); ++k)
+        unpack(recv_index_[r][k], &inbox_[r][k * width]);
   }
 
   // The local indices of the ghosts, by the rank that owns them.
   const std::vector<std::vector<std::uint32_t>>& ghosts_from() const { return recv_index_; }
-  // How many ghosts this rank holds, and sends each step.
-  std::size_t ghosts() const { return count(recv_ids_); }
-  std::size_t sent() const { return count(send_ids_); }
 
  private:
-  static std::size_t count(const std::vector<std::vector<GrainId>>& lists) {
-    std::size_t n = 0;
-    for (const auto& list : lists) n += list.size();
-    return n;
-  }
-
   RankTeam team_;
   double reach_;
   std::optional<RecursiveBisection<D>> parts_;
   std::vector<int> partners_;  // the ranks this one sends ghosts to or receives them from
-  std::vector<std::vector<GrainId>> send_ids_, recv_ids_;  // by rank, in the order sent
-  std::vector<std::vector<std::uint32_t>> send_index_, recv_index_;
+  std::vector<std::vector<std::uint32_t>> send_index_, recv_index_;  // by rank, in id order
+  std::vector<std::vector<double>> outbox_, inbox_;  // the states, kept for their memory
 };
 
 }  // namespace granjet::dem

@@ -63,9 +63,14 @@ class Resume : public testing::CommandTest {
     return status != -1 && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
   }
 
+  static std::string bytes_of(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
+
   static nlohmann::json without_timings(nlohmann::json j) {
     for (const char* key : {"wall_seconds", "cpu_seconds", "particle_steps_per_second",
-                            "collisions_per_second", "output"})
+                            "collisions_per_second", "output", "ranks"})
       j.erase(key);
     if (j.contains("analysis")) j["analysis"].erase("seconds");
     return j;
@@ -110,6 +115,16 @@ TEST_F(Resume, KilledRunResumedIsBitIdenticalOnBothBackends) {
     ASSERT_TRUE(run_and_kill(base + paths(killed), partial, c.kill_after))
         << c.backend << ": the run ended before it could be killed";
     EXPECT_FALSE(fs::exists(dir_ / (killed + ".h5")));
+    if (std::string(c.backend) == "event_driven") {  // started as one of several MPI ranks
+      ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+      const std::string before = bytes_of(partial);
+      EXPECT_EQ(granjet("resume " + partial.string() + " --quiet"), 2);
+      ::unsetenv("OMPI_COMM_WORLD_SIZE");
+      EXPECT_NE(err_.find("granjet resume runs as one process: the event-driven backend"),
+                std::string::npos)
+          << err_;
+      EXPECT_EQ(bytes_of(partial), before);
+    }
     ASSERT_EQ(granjet("resume " + partial.string() + " --quiet --summary " +
                       (dir_ / (killed + ".json")).string()),
               0)
@@ -178,6 +193,36 @@ TEST_F(Resume, ResumeMayExtendTheRunAndNothingElse) {
   for (const char* group : {"/particles", "/observables"})
     EXPECT_TRUE(same_hdf5(dir_ / "long.h5", dir_ / "short.h5", group)) << group;
 }
+
+#ifdef GRANJET_HAS_MPI
+// A checkpoint written by one process resumes over two MPI ranks (mpirun -n 2 granjet resume)
+// into the run one process makes straight through.
+TEST_F(Resume, KilledRunResumesOverTwoRanks) {
+  const std::string base = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=2000 --set wall.diameter=14"
+                           " --set run.t_end=12 --set analysis.window_start=2"
+                           " --set analysis.window_end=12 --set run.checkpoint_interval=2"
+                           " --set output.interval=1"
+                           " --set output.fields=position,velocity,radius,id,omega,force,contacts";
+  const auto paths = [&](const std::string& name) {
+    return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
+           (dir_ / (name + ".json")).string();
+  };
+  ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
+  const fs::path partial = dir_ / "killed.h5.partial";
+  ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 4.0))
+      << "the run ended before it could be killed";
+  // Root needs --allow-run-as-root; two ranks on a machine of any size need --oversubscribe.
+  const std::string cmd =
+      std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe -n 2 " + GRANJET_BINARY +
+      " resume " + partial.string() + " --quiet --summary " + (dir_ / "killed.json").string() +
+      " > " + (dir_ / "mpi.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << bytes_of(dir_ / "mpi.txt");
+  EXPECT_FALSE(fs::exists(partial));
+  expect_same_run("straight", "killed", true);
+  EXPECT_EQ(summary("killed.json")["ranks"]["count"], 2);
+}
+#endif
 
 }  // namespace
 }  // namespace granjet
