@@ -7,8 +7,12 @@
 # the thread counts and the fastest round of each is kept; every run is the same trajectory
 # (thread counts give bit-identical results), so only the time differs.
 #
+# With LAYOUTS, each entry RANKSxTHREADS runs as `mpirun -n RANKS` with run.threads = THREADS
+# (one soft-DEM run spread over ranks: the same trajectory again), each rank on THREADS cores.
+#
 # Usage: bench/scaling.sh   (from the repository root, after building build/app/granjet)
-# Environment: THREADS (default "1 2 ... nproc"), ROUNDS (default 2), T_END (overrides both
+# Environment: THREADS (default "1 2 ... nproc"), LAYOUTS (e.g. "1x1 16x1 4x4 1x16"; default
+# 1xN for each N of THREADS), MPIEXEC (default mpiexec), ROUNDS (default 2), T_END (overrides both
 # scenes' run.t_end, e.g. 10 for a quick look), GRANJET (the binary, default build/app/granjet),
 # PROFILES (a folder: each run's summary, with its per-phase profile, is kept there as
 # SCENE-tTHREADS-rROUND.json), SCENES (which of the two, default "jet3d jet3d_large").
@@ -17,6 +21,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 granjet=${GRANJET:-$root/build/app/granjet}
 [ -x "$granjet" ] || { echo "scaling.sh: build $granjet first (or set GRANJET)" >&2; exit 1; }
 threads=${THREADS:-$(seq -s ' ' 1 "$(nproc)")}
+layouts=${LAYOUTS:-$(for n in $threads; do printf '1x%s ' "$n"; done)}
+mpiexec=${MPIEXEC:-mpiexec}
 rounds=${ROUNDS:-2}
 work=$(mktemp -d)
 [ -n "${PROFILES:-}" ] && mkdir -p "$PROFILES"
@@ -28,11 +34,13 @@ scenes=(
   "jet3d_large|$root/scenes/jet3d_large.ini|"
 )
 
-one_run() {  # scene file, overrides, threads, label: prints "wall_seconds psteps_per_second serial_share"
-  local extra=()
+one_run() {  # scene file, overrides, RANKSxTHREADS, label: prints "wall_seconds psteps_per_second serial_share"
+  local extra=() launch=() ranks=${3%x*} n=${3#*x}
   [ -n "${T_END:-}" ] && extra=(--set "run.t_end=$T_END")
+  [ "$ranks" -gt 1 ] && launch=(env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    $mpiexec -n "$ranks" --map-by "slot:PE=$n" --bind-to core)
   # shellcheck disable=SC2086  # the overrides are words
-  "$granjet" run "$1" $2 "${extra[@]}" --set "run.threads=$3" --quiet --no-log --profile \
+  "${launch[@]}" "$granjet" run "$1" $2 "${extra[@]}" --set "run.threads=$n" --quiet --no-log --profile \
     --out "$work/run.h5" --summary "$work/run.json" >/dev/null 2>"$work/stderr" ||
     { cat "$work/stderr" >&2; exit 1; }
   [ -n "${PROFILES:-}" ] && cp "$work/run.json" "$PROFILES/$4.json"
@@ -42,29 +50,31 @@ print(s["wall_seconds"], s["particle_steps_per_second"], s["profile"]["serial_sh
 }
 
 echo "CPU: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) logical cores"
-echo "rounds: $rounds (fastest kept), threads: $threads${T_END:+, t_end: $T_END}"
-printf '%-12s %7s %10s %14s %9s %10s %8s\n' scene threads wall_s psteps/s speed-up efficiency serial
+echo "rounds: $rounds (fastest kept), ranks x threads: $layouts${T_END:+, t_end: $T_END}"
+printf '%-12s %7s %10s %14s %9s %10s %8s\n' scene layout wall_s psteps/s speed-up efficiency serial
 for entry in "${scenes[@]}"; do
   IFS='|' read -r name file overrides <<<"$entry"
   [[ " ${SCENES:-jet3d jet3d_large} " == *" $name "* ]] || continue
   declare -A best=()
   for ((r = 0; r < rounds; ++r)); do
-    for n in $threads; do
-      read -r wall rate serial < <(one_run "$file" "$overrides" "$n" "$name-t$n-r$r")
-      if [ -z "${best[$n]:-}" ] || python3 -c "import sys; sys.exit(not $wall < ${best[$n]%% *})"
-      then best[$n]="$wall $rate $serial"; fi
+    for layout in $layouts; do
+      read -r wall rate serial < <(one_run "$file" "$overrides" "$layout" "$name-$layout-r$r")
+      if [ -z "${best[$layout]:-}" ] ||
+        python3 -c "import sys; sys.exit(not $wall < ${best[$layout]%% *})"
+      then best[$layout]="$wall $rate $serial"; fi
     done
   done
-  first=${threads%% *}
+  first=${layouts%% *}
   base=${best[$first]%% *}
-  for n in $threads; do
-    read -r wall rate serial <<<"${best[$n]}"
+  for layout in $layouts; do
+    read -r wall rate serial <<<"${best[$layout]}"
     python3 -c "import sys
-name, n, wall, rate, base, first, serial = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), \
-    float(sys.argv[4]), float(sys.argv[5]), int(sys.argv[6]), float(sys.argv[7])
-speedup = base / wall * first
-print(f'{name:<12} {n:>7} {wall:>10.2f} {rate:>14.4g} {speedup:>9.3f} {speedup / n:>10.3f} {100 * serial:>7.2f}%')" \
-      "$name" "$n" "$wall" "$rate" "$base" "$first" "$serial"
+name, layout, wall, rate, base, first, serial = sys.argv[1], sys.argv[2], float(sys.argv[3]), \
+    float(sys.argv[4]), float(sys.argv[5]), sys.argv[6], float(sys.argv[7])
+cores = lambda l: int(l.split('x')[0]) * int(l.split('x')[1])
+speedup = base / wall * cores(first)
+print(f'{name:<12} {layout:>7} {wall:>10.2f} {rate:>14.4g} {speedup:>9.3f} {speedup / cores(layout):>10.3f} {100 * serial:>7.2f}%')" \
+      "$name" "$layout" "$wall" "$rate" "$base" "$first" "$serial"
   done
   unset best
 done
