@@ -13,13 +13,13 @@
 # Usage: bench/scaling.sh   (from the repository root, after building build/app/granjet)
 # Environment: THREADS (default "1 2 ... nproc"), LAYOUTS (e.g. "1x1 16x1 4x4 1x16"; default
 # 1xN for each N of THREADS), MPIEXEC (default mpiexec), ROUNDS (default 2), T_END (overrides both
-# scenes' run.t_end, e.g. 10 for a quick look), GRANJET (the binary, default build/app/granjet),
+# scenes' run.t_end, e.g. 10 for a quick look), GRANJET (the command, default build/app/granjet),
 # PROFILES (a folder: each run's summary, with its per-phase profile, is kept there as
 # SCENE-tTHREADS-rROUND.json), SCENES (which of the two, default "jet3d jet3d_large").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-granjet=${GRANJET:-$root/build/app/granjet}
-[ -x "$granjet" ] || { echo "scaling.sh: build $granjet first (or set GRANJET)" >&2; exit 1; }
+read -ra granjet <<<"${GRANJET:-$root/build/app/granjet}"  # words: a loader may come first
+[ -x "${granjet[0]}" ] || { echo "scaling.sh: build ${granjet[0]} first (or set GRANJET)" >&2; exit 1; }
 threads=${THREADS:-$(seq -s ' ' 1 "$(nproc)")}
 layouts=${LAYOUTS:-$(for n in $threads; do printf '1x%s ' "$n"; done)}
 mpiexec=${MPIEXEC:-mpiexec}
@@ -40,7 +40,7 @@ one_run() {  # scene file, overrides, RANKSxTHREADS, label: prints "wall_seconds
   [ "$ranks" -gt 1 ] && launch=(env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
     $mpiexec -n "$ranks" --map-by "slot:PE=$n" --bind-to core)
   # shellcheck disable=SC2086  # the overrides are words
-  "${launch[@]}" "$granjet" run "$1" $2 "${extra[@]}" --set "run.threads=$n" --quiet --no-log --profile \
+  "${launch[@]}" "${granjet[@]}" run "$1" $2 "${extra[@]}" --set "run.threads=$n" --quiet --no-log --profile \
     --out "$work/run.h5" --summary "$work/run.json" >/dev/null 2>"$work/stderr" ||
     { cat "$work/stderr" >&2; exit 1; }
   [ -n "${PROFILES:-}" ] && cp "$work/run.json" "$PROFILES/$4.json"

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/rank_team.hpp"
+#include "core/recursive_bisection.hpp"
 #include "core/state_archive.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
@@ -135,6 +136,31 @@ TEST(Ranks, Jet3dFrictionlessBidisperseAb2) {
 
 // A checkpoint written over K ranks resumes on one rank, and one written on one rank resumes
 // over K, each going on as the run that wrote it.
+// Two grains, one per part: their contact crosses ranks for its whole duration, and its
+// tangential history (an oblique, frictional impact) lives on both owners. Compared during the
+// contact and after it; with more ranks than grains some ranks own none.
+TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
+  const RankTeam world = RankTeam::world();
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/binary.ini",
+                                 {"binary.impact_parameter=0.5", "contact.friction=0.5"});
+  auto one = dem::make_dem_simulator<3>(scene);
+  auto spread = dem::make_dem_simulator<3>(scene, world);
+  const auto x = one->particles().position();
+  const std::vector<double> weight(x.size(), 1.0);
+  const RecursiveBisection<3> parts(x, weight, world.size());
+  ASSERT_EQ(parts.part().size(), 2u);
+  ASSERT_NE(parts.part()[0], parts.part()[1]) << "the two grains start on one rank";
+  for (double t : {0.09, 0.12, 0.5}) {
+    one->advance_to(t);
+    spread->advance_to(t);
+    EXPECT_EQ(raw_state(one->particles()), raw_state(spread->particles())) << "t = " << t;
+    EXPECT_EQ(energies(one->energy()), energies(spread->energy())) << "t = " << t;
+    EXPECT_EQ(one->stats().contacts, spread->stats().contacts) << "t = " << t;
+    EXPECT_EQ(one->stats().contacts, t < 0.2 ? 1 : 0) << "t = " << t;
+    expect_samples_of_one_rank<3>(*one, *spread);
+  }
+}
+
 TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
   const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
                                  {"jet.grains=2000", "wall.diameter=14", "contact.friction=0.5"});
