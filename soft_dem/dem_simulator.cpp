@@ -601,6 +601,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
     for (std::int64_t i = 0; i < n; ++i)
       if (!owned_[i]) forced_[i] |= kGhostBit;
     domain_->list_halo(p_.position(), p_.id(), owned_);
+    if (tethered_) wall_.keep_held([this](GrainId id) { return index_of(id); }, p_.size());
   }
   timing.emplace(&this->profile(), phase_.rebuild_rows);
   pair_row_.resize(pairs_.size());

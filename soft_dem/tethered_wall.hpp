@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,20 @@ class TetheredWall {
 
   std::size_t bonds() const { return bonds_.size(); }
 
+  // Over ranks, after each rebuild: the springs to visit are those of the grains held here
+  // (index_of(id) below `grains`), so that no rank visits the whole target's. All of them until
+  // called. The order of the sums stays that of all springs.
+  template <class IndexOf>
+  void keep_held(IndexOf&& index_of, std::size_t grains) {
+    held_bonds_.clear();
+    held_anchors_.clear();
+    for (std::uint32_t k = 0; k < bonds_.size(); ++k)
+      if (index_of(bonds_[k].i) < grains || index_of(bonds_[k].j) < grains)
+        held_bonds_.push_back(k);
+    for (std::uint32_t a = 0; a < anchors_.size(); ++a)
+      if (index_of(anchors_[a].id) < grains) held_anchors_.push_back(a);
+  }
+
   // Adds the tether forces; index_of maps a grain id to its current index (p.size() or more for
   // a grain held by another rank: its springs are skipped, and a bond to it gives NaN). `threads`
   // share the bonds, then the grains; each grain adds its anchor's force, then its bonds' in bond
@@ -59,11 +74,12 @@ class TetheredWall {
   void add_forces_share(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force) const {
     const auto x = p.position();
     const auto v = p.velocity();
-    const auto bonds = static_cast<std::int64_t>(bonds_.size());
-    const auto anchors = static_cast<std::int64_t>(anchors_.size());
+    const auto bonds = static_cast<std::int64_t>(held_bonds_.size());
+    const auto anchors = static_cast<std::int64_t>(held_anchors_.size());
     const std::size_t grains = p.size();
 #pragma omp for schedule(static)
-    for (std::int64_t k = 0; k < bonds; ++k) {  // the force on the bond's first grain
+    for (std::int64_t held = 0; held < bonds; ++held) {  // the force on the bond's first grain
+      const std::uint32_t k = held_bonds_[held];
       const Bond& b = bonds_[k];
       const std::size_t i = index_of(b.i), j = index_of(b.j);
       if (i >= grains || j >= grains) {  // a grain only another rank holds: unknown here
@@ -77,7 +93,8 @@ class TetheredWall {
       bond_force_[k] = f * n;
     }
 #pragma omp for schedule(static)
-    for (std::int64_t a = 0; a < anchors; ++a) {
+    for (std::int64_t held = 0; held < anchors; ++held) {  // a held grain's bonds are all held
+      const std::uint32_t a = held_anchors_[held];
       const std::size_t i = index_of(anchors_[a].id);
       if (i >= grains) continue;
       Vec<D> sum = force[i] - (spring_ * (x[i] - anchors_[a].position) + damping_ * v[i]);
@@ -107,11 +124,11 @@ class TetheredWall {
   void for_each_energy_term(const Particles<D>& p, IndexOf&& index_of, Visit&& visit) const {
     const auto x = p.position();
     const std::size_t grains = p.size();
-    for (std::size_t a = 0; a < anchors_.size(); ++a) {
+    for (std::uint32_t a : held_anchors_) {
       const std::size_t i = index_of(anchors_[a].id);
       if (i < grains) visit(a, i, 0.5 * spring_ * (x[i] - anchors_[a].position).squaredNorm());
     }
-    for (std::size_t k = 0; k < bonds_.size(); ++k) {
+    for (std::uint32_t k : held_bonds_) {
       const std::size_t i = index_of(bonds_[k].i), j = index_of(bonds_[k].j);
       if (i >= grains || j >= grains) continue;
       const double stretch = (x[i] - x[j]).norm() - bonds_[k].rest;
@@ -148,6 +165,10 @@ class TetheredWall {
       bonds_of_first_.push_back(static_cast<std::uint32_t>(bonds_of_.size()));
     }
     bond_force_.resize(bonds_.size());
+    held_bonds_.resize(bonds_.size());
+    std::iota(held_bonds_.begin(), held_bonds_.end(), 0u);
+    held_anchors_.resize(anchors_.size());
+    std::iota(held_anchors_.begin(), held_anchors_.end(), 0u);
   }
 
   struct Anchor {
@@ -201,6 +222,7 @@ class TetheredWall {
   std::vector<Bond> bonds_;
   std::vector<std::uint32_t> bonds_of_first_{0};
   std::vector<std::int64_t> bonds_of_;
+  std::vector<std::uint32_t> held_bonds_, held_anchors_;  // the springs visited (keep_held)
   mutable std::vector<Vec<D>>
       bond_force_;  // add_forces_share's scratch: each bond's force on its first grain
 };
