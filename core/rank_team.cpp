@@ -1,7 +1,6 @@
 #include "core/rank_team.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -21,23 +20,6 @@ int launched_ranks() {
 }
 
 namespace {
-
-double seconds_in_calls_ = 0.0;
-
-// Adds its scope's wall time to seconds_in_calls_.
-class InCall {
- public:
-  InCall() : start_(std::chrono::steady_clock::now()) {}
-  ~InCall() {
-    seconds_in_calls_ +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  InCall(const InCall&) = delete;
-  InCall& operator=(const InCall&) = delete;
-
- private:
-  std::chrono::steady_clock::time_point start_;
-};
 
 void check_received(int rank, std::size_t got, std::size_t expected) {
   if (got != expected)
@@ -74,8 +56,6 @@ std::vector<int> offsets_of(const std::vector<int>& counts, std::size_t& total) 
 
 }  // namespace
 
-double RankTeam::seconds_in_calls() { return seconds_in_calls_; }
-
 void RankTeam::check_lists(std::size_t to, std::size_t from) const {
   if (to != static_cast<std::size_t>(size_) || from != static_cast<std::size_t>(size_))
     throw std::invalid_argument("rank team exchange: one list per rank each way, not " +
@@ -98,28 +78,24 @@ RankTeam RankTeam::world() {
 #ifdef GRANJET_HAS_MPI
 
 void RankTeam::max(std::span<double> values) const {
-  const InCall timing;
   if (alone() || values.empty()) return;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
                 MPI_COMM_WORLD);
 }
 
 void RankTeam::min(std::span<double> values) const {
-  const InCall timing;
   if (alone() || values.empty()) return;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN,
                 MPI_COMM_WORLD);
 }
 
 std::int64_t RankTeam::sum(std::int64_t value) const {
-  const InCall timing;
   if (alone()) return value;
   MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
   return value;
 }
 
 bool RankTeam::any(bool value) const {
-  const InCall timing;
   if (alone()) return value;
   int v = value ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
@@ -127,7 +103,6 @@ bool RankTeam::any(bool value) const {
 }
 
 void RankTeam::all_gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
-  const InCall timing;
   if (alone()) {
     copy_to(joined(mine.size()), mine);
     return;
@@ -142,7 +117,6 @@ void RankTeam::all_gather_bytes(std::span<const std::byte> mine, const Room& joi
 }
 
 void RankTeam::gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
-  const InCall timing;
   if (alone()) {
     copy_to(joined(mine.size()), mine);
     return;
@@ -158,7 +132,6 @@ void RankTeam::gather_bytes(std::span<const std::byte> mine, const Room& joined)
 }
 
 void RankTeam::broadcast_bytes(std::span<std::byte> root_bytes, const Room& bytes) const {
-  const InCall timing;
   if (alone()) return;
   std::uint64_t size = root_bytes.size();
   MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
@@ -169,7 +142,6 @@ void RankTeam::broadcast_bytes(std::span<std::byte> root_bytes, const Room& byte
 void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
                               std::span<const int> partners, bool sizes_known,
                               const RoomOf& from) const {
-  const InCall timing;
   if (alone()) {
     for (int r : partners) copy_to(from(r, to[r].size()), to[r], sizes_known);
     return;

@@ -35,10 +35,6 @@ class RankTeam {
   int size() const { return size_; }
   bool alone() const { return size_ == 1; }
 
-  // Wall seconds this process has spent in the calls of teams of several ranks, waiting for
-  // the others included: what is not its own work.
-  static double seconds_in_calls();
-
   // Element by element over the ranks, in place: exact in any order.
   void max(std::span<double> values) const;
   void min(std::span<double> values) const;

@@ -198,12 +198,16 @@ void DemSimulator<D, Law, kMono, Space>::step() {
       add_travel(force_pass([&](std::size_t i) { return ab2.advance(i); }, coast));
     } else {  // a ghost's move is its owner's to count (ghosts never coast: kGhostBit)
       const std::uint8_t* owned = owned_.data();
-      const double own = force_pass(
-          [&](std::size_t i) {
-            const double speed2 = ab2.advance(i);
-            return owned[i] ? speed2 : 0.0;
-          },
-          coast);
+      double own = 0.0;
+      {
+        const WorkBalance::Pass work(balance_);
+        own = force_pass(
+            [&](std::size_t i) {
+              const double speed2 = ab2.advance(i);
+              return owned[i] ? speed2 : 0.0;
+            },
+            coast);
+      }
       update_ghosts();
       add_travel(agree(own));
     }
@@ -216,6 +220,7 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     const std::uint8_t* owned = over_ranks() ? owned_.data() : nullptr;
     {
       const PhaseProfile::Timer predicting = timer(phase_.predictor);
+      const WorkBalance::Pass work(balance_);
 #pragma omp parallel num_threads(threads_) if (threads_ > 1)
       {
         double speed2 = 0.0;  // a local, stored once: the threads' slots share a cache line
@@ -233,13 +238,16 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     add_travel(over_ranks() ? agree(speed2) : speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
     const VerletStep<D, kRotation> corrector = verlet_step();
-    force_pass(
-        [&](std::size_t i) {
-          corrector.correct(i);
-          return 0.0;
-        },
-        // F(t) = F(t + dt) = 0: nothing to correct
-        [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
+    {
+      const WorkBalance::Pass work(balance_);
+      force_pass(
+          [&](std::size_t i) {
+            corrector.correct(i);
+            return 0.0;
+          },
+          // F(t) = F(t + dt) = 0: nothing to correct
+          [](const std::uint8_t*, std::int64_t, std::int64_t) { return 0.0; });
+    }
     if (over_ranks()) update_ghosts();
   }
   stats_.steps = step_;
@@ -455,7 +463,7 @@ void DemSimulator<D, Law, kMono, Space>::check_finite() const {
 // Jet grains farther than region.radius from the axis or region.below behind the target plane
 // are removed; their energy is booked so the balance still closes.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
+void DemSimulator<D, Law, kMono, Space>::remove_escaped(std::vector<double>& weight) {
   if (!scene_.has_wall()) return;
   const auto n = static_cast<std::int64_t>(p_.size());
   const auto kind = p_.kind();
@@ -508,6 +516,7 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped() {
     Particles<D>::gather_one(owned_, keep, threads_);
     Particles<D>::gather_one(whole_cell_, keep, threads_);
   }
+  if (!weight.empty()) Particles<D>::gather_one(weight, keep, threads_);
   if (plate_) plate_->gather(keep);
 }
 
@@ -535,11 +544,14 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
     stats_.contacts = own_contacts();
     contacts_pending_ = false;
   }
+  // Read off the list about to go, for a re-cut of the parts.
+  std::vector<double> weight;
+  if (over_ranks() && balance_.looks_at_next_rebuild()) weight = grain_weights();
   check_finite();
-  remove_escaped();
+  remove_escaped(weight);
   if (over_ranks()) {
     timing.emplace(&this->profile(), phase_.rebuild_moves);
-    distribute(history);
+    distribute(history, std::move(weight));
     timing.emplace(&this->profile(), phase_.rebuild_sort);
   }
   const auto radius = p_.radius();
@@ -787,7 +799,7 @@ const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles() const {
       double x[D], v[D], w[kSpinWidth<D>], radius, mass;
     };
     whole_ = Particles<D>();
-    for (const Grain& g : in_whole_order<Grain>([&](std::size_t i, auto emit) {
+    for (const Grain& g : in_whole_order_on_rank0<Grain>([&](std::size_t i, auto emit) {
            Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
            put<D>(g.x, p_.position()[i]);
            put<D>(g.v, p_.velocity()[i]);

@@ -7,8 +7,10 @@
 // scene compiles without both. Grains all of one size go without radius lookups (kMono); the
 // periodic gas scenes use minimum-image separations (Space = PeriodicBox), all others none.
 // Given a team of several MPI ranks, the grains of an open-space scene are spread over them by
-// space (soft_dem/domain.hpp) with the results of one rank; particles() and energy() are then
-// collective, every rank calling them in the same order.
+// space (soft_dem/domain.hpp) with the results of one rank; what looks at all grains is then
+// collective, every rank calling it in the same order. energy() and stats() are the same on
+// every rank; particles(), the samples and the checkpoint, which only the output reads, are
+// whole on rank 0 and empty elsewhere.
 #pragma once
 
 #include <cstddef>
@@ -17,6 +19,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -92,13 +95,16 @@ class DemSimulator final : public Simulator<D> {
     (team.*combine)(std::span<double>(&value, 1));
     return value;
   }
-  void remove_escaped();
+  // weight: per grain held, compacted alike (empty: none).
+  void remove_escaped(std::vector<double>& weight);
   BlowUpError overlap_error(std::size_t i, std::size_t j) const;
   // Over MPI ranks (soft_dem/dem_simulator_ranks.hpp). distribute: at a rebuild, moves the
   // grains to their owners and the ghosts to the ranks that need them, with the histories of
-  // their contacts (those for the grains held here come back in `history`).
-  void distribute(std::vector<History>& history);
-  double grain_weight(std::size_t i) const;
+  // their contacts (those for the grains held here come back in `history`). weight: each grain's
+  // share of this rank's pass, for a re-cut of the parts (grain_weights(), when the balance looks
+  // at this rebuild).
+  void distribute(std::vector<History>& history, std::vector<double> weight);
+  std::vector<double> grain_weights() const;
   GrainRecord<D> record_of(std::size_t i) const;
   // The contacts of the last pass in this rank's own rows.
   std::int64_t own_contacts() const;
@@ -111,9 +117,15 @@ class DemSimulator final : public Simulator<D> {
   double agree(double own_largest_speed2);
   void raise_together(const std::optional<BlowUpError>& mine) const;
   // Per-grain values of this rank's own grains, joined over all ranks in the order one rank
-  // holds the grains (by the cell of the last rebuild, then id).
+  // holds the grains (by the cell of the last rebuild, then id): on every rank, or only on rank
+  // 0 (empty elsewhere) for what only the run's output reads.
+  enum class Joined : std::uint8_t { kOnEveryRank, kOnRank0 };
   template <class Value, class Of>
-  std::vector<Value> in_whole_order(Of&& value_of) const;
+  std::vector<Value> in_whole_order(Of&& value_of, Joined where = Joined::kOnEveryRank) const;
+  template <class Value, class Of>
+  std::vector<Value> in_whole_order_on_rank0(Of&& value_of) const {
+    return in_whole_order<Value>(std::forward<Of>(value_of), Joined::kOnRank0);
+  }
   EnergyBalance energy_over_ranks() const;
   // Every rank holds all grains (the initial state, a checkpoint): each cuts the same parts
   // and takes its own.
@@ -198,7 +210,7 @@ class DemSimulator final : public Simulator<D> {
   // forced_'s bit for a ghost: always pushed, so that no coasting loop counts its speed.
   static constexpr std::uint8_t kGhostBit = 4;
   WorkBalance balance_;
-  mutable Particles<D> whole_;  // particles() over ranks: all grains, on each rank
+  mutable Particles<D> whole_;  // particles() over ranks: all grains on rank 0, none elsewhere
   mutable bool whole_fresh_ = false;
 };
 

@@ -21,11 +21,14 @@
 
 namespace granjet::dem {
 
-// A grain's share of a rank's work: the listed pairs of its row, plus one for its update.
+// Each grain's share of a rank's pass: its update, and the pairs of its row that the pass tests
+// (the quiet pairs it skips cost next to nothing). Read off the last pass's list.
 template <int D, class Law, bool kMono, class Space>
-double DemSimulator<D, Law, kMono, Space>::grain_weight(std::size_t i) const {
-  if (pairs_.first.size() != p_.size() + 1) return 1.0;  // before the first list
-  return 1.0 + static_cast<double>(pairs_.first[i + 1] - pairs_.first[i]);
+std::vector<double> DemSimulator<D, Law, kMono, Space>::grain_weights() const {
+  std::vector<double> weight(p_.size(), 1.0);
+  if (pairs_.first.size() != p_.size() + 1) return weight;  // before the first list
+  for (std::uint32_t k : quiet_.tested()) weight[pair_row_[k]] += 1.0;
+  return weight;
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -52,22 +55,22 @@ GrainRecord<D> DemSimulator<D, Law, kMono, Space>::record_of(std::size_t i) cons
 }
 
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& history) {
+void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& history,
+                                                    std::vector<double> weight) {
   Domain<D>& domain = *domain_;
   const RankTeam& team = domain.team();
   const std::size_t n = p_.size();
   const auto x = p_.position();
   for (std::size_t i = 0; i < n; ++i) index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
 
-  // Cut anew where the work grew uneven: each grain weighted by its pairs, scaled so that a
-  // rank's grains weigh its measured work.
+  // Cut anew where the work grew uneven: each grain weighted by its share of the pass, scaled
+  // so that a rank's own grains weigh its measured work (its ghosts nothing).
   if (const std::optional<double> work = balance_.at_rebuild(team)) {
-    std::vector<double> weight(n, 0.0);
     double mine = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-      if (owned_[i]) mine += weight[i] = grain_weight(i);
+      if (owned_[i]) mine += weight[i];
     const double scale = mine > 0.0 ? *work / mine : 1.0;
-    for (double& w : weight) w *= scale;
+    for (std::size_t i = 0; i < n; ++i) weight[i] = owned_[i] ? scale * weight[i] : 0.0;
     domain.partition(x, weight, owned_, false);
   }
 
@@ -260,7 +263,8 @@ void DemSimulator<D, Law, kMono, Space>::raise_together(
 
 template <int D, class Law, bool kMono, class Space>
 template <class Value, class Of>
-std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value_of) const {
+std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value_of,
+                                                                      Joined where) const {
   struct Keyed {
     std::uint64_t cell;
     GrainId id;
@@ -274,7 +278,10 @@ std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value
     value_of(i, [&](const Value& v) { mine.push_back({whole_cell_[i], p_.id()[i], nth++, v}); });
   }
   // Each rank's values come in the whole order: merging its run with the others' sorts them.
-  const std::vector<Keyed> all = domain_->team().template all_gather<Keyed>(mine);
+  const RankTeam& team = domain_->team();
+  const std::vector<Keyed> all = where == Joined::kOnEveryRank
+                                     ? team.template all_gather<Keyed>(mine)
+                                     : team.template gather<Keyed>(mine);
   std::vector<Value> out;
   out.reserve(all.size());
   for (std::uint32_t k : merged_run_order(all.size(), [&](std::size_t a, std::size_t b) {
@@ -378,14 +385,14 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
   put_particles(a, "dem/grains", particles());
   constexpr int S = kSpinWidth<D>;
   std::vector<Vec<D>> force_prev;
-  for (const Row<D>&r : in_whole_order<Row<D>>([&](std::size_t i, auto emit) {
+  for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
          Row<D> row;
          put_row<D, D>(row, 0, force_prev_[i]);
          emit(row);
        }))
     force_prev.push_back(get_row<D, D>(r, 0));
   std::vector<Spin<D>> torque_prev;
-  for (const Row<S>&r : in_whole_order<Row<S>>([&](std::size_t i, auto emit) {
+  for (const Row<S>&r : in_whole_order_on_rank0<Row<S>>([&](std::size_t i, auto emit) {
          Row<S> row;
          std::memcpy(row.data(), &torque_prev_[i], sizeof(Spin<D>));
          emit(row);
@@ -396,7 +403,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
   }
   std::vector<Vec<D>> plate_shear;
   if (plate_ && !plate_->shear().empty())
-    for (const Row<D>&r : in_whole_order<Row<D>>([&](std::size_t i, auto emit) {
+    for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
            Row<D> row;
            put_row<D, D>(row, 0, plate_->shear()[i]);
            emit(row);
@@ -410,7 +417,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
   for (const History& h : histories()) of_row[index_of_id_[h.a]].push_back(h);
   std::vector<GrainId> pair;
   std::vector<Vec<D>> shear;
-  for (const Row<2 + D>&r : in_whole_order<Row<2 + D>>([&](std::size_t i, auto emit) {
+  for (const Row<2 + D>&r : in_whole_order_on_rank0<Row<2 + D>>([&](std::size_t i, auto emit) {
          for (const History& h : of_row[i]) {
            Row<2 + D> row{static_cast<double>(h.a), static_cast<double>(h.b)};
            put_row<D, 2 + D>(row, 2, h.shear);
@@ -442,7 +449,7 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
       out.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 2),
                      get_row<D, N>(r, 2 + D), get_row<D, N>(r, 2 + 2 * D)});
   };
-  take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+  take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
     for_each_contact_of(
         i,
         [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
@@ -453,7 +460,7 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
         [](std::uint32_t) {});
   }));
   if (plate_)
-    take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+    take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
       plate_->contact(
           x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
           [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
@@ -492,7 +499,7 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
         total[j] -= f;
       },
       [](std::uint32_t) {});
-  take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+  take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
     for_each_contact_of(
         i,
         [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
@@ -502,7 +509,7 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
         [](std::uint32_t) {});
   }));
   if (plate_)
-    take(in_whole_order<Row<N>>([&](std::size_t i, auto emit) {
+    take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
       plate_->contact(
           p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
           [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
@@ -516,7 +523,7 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
     wall_.add_forces(
         p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(total));
   std::vector<Vec<D>> whole;
-  for (const Row<D>&r : in_whole_order<Row<D>>([&](std::size_t i, auto emit) {
+  for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
          Row<D> row;
          put_row<D, D>(row, 0, total[i]);
          emit(row);

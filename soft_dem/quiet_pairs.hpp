@@ -52,8 +52,11 @@ class QuietPairs {
   bool fresh() const { return age_ < kMaxAge; }
   // Whether grain i is trusted quiet by the classification in force (fresh() only).
   bool trusted(std::size_t i) const { return trusted_[i] != 0; }
-  // After a neighbour rebuild: the list it classified is gone.
-  void expire() { age_ = kMaxAge; }
+  // After a neighbour rebuild: the list it classified is gone, and with it the pairs to test.
+  void expire() {
+    age_ = kMaxAge;
+    tested_count_ = 0;
+  }
 
   // Classifies the pairs of `pairs` (rows pair_row) at the start of a pass. force_before: each
   // grain's force at the last pass (a grain with none moves this pass as if it coasted, whatever

@@ -1,9 +1,12 @@
-// When a run over ranks cuts its parts anew (soft_dem/domain.hpp). Every kRebuildsPerLook
-// neighbour rebuilds the ranks compare their work since the last look: wall time outside MPI
-// calls, so that rank 0's output and analysis count and waiting for another rank does not. When
-// the busiest rank's work exceeds the mean by kRecutImbalance, the parts are cut anew, each
-// rank's grains weighted to add up to its work. The run's imbalance is the busiest rank's work
-// over the mean, summed over the looks: the share of wall time an even split would save.
+// When a run over ranks cuts its parts anew (soft_dem/domain.hpp). The ranks meet at every
+// step (the ghost states), so what a step costs is the slowest rank's pass, and the cut balances
+// exactly that: each rank's work is the wall time of its per-step passes (forces and update;
+// Verlet's predictor), not its rebuilds, which meet on their own, nor rank 0's output and
+// analysis, which no cut can share. Every kRebuildsPerLook neighbour rebuilds the ranks compare
+// their work since the last look; when the busiest rank's exceeds the mean by kRecutImbalance,
+// the parts are cut anew, each rank's grains weighted to add up to its work. The run's imbalance
+// is the busiest rank's work over the mean, summed over the looks: the share of the passes'
+// wall time an even split would save.
 #pragma once
 
 #include <algorithm>
@@ -19,22 +22,39 @@ namespace granjet::dem {
 
 class WorkBalance {
  public:
-  static constexpr double kRecutImbalance = 1.05;
-  static constexpr std::int64_t kRebuildsPerLook = 8;
+  static constexpr double kRecutImbalance = 1.03;
+  static constexpr std::int64_t kRebuildsPerLook = 4;
+
+  // Adds its scope's wall time to the rank's work: wraps a per-step pass.
+  class Pass {
+   public:
+    explicit Pass(WorkBalance& balance)
+        : balance_(balance), start_(std::chrono::steady_clock::now()) {}
+    ~Pass() {
+      balance_.work_ +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    Pass(const Pass&) = delete;
+    Pass& operator=(const Pass&) = delete;
+
+   private:
+    WorkBalance& balance_;
+    std::chrono::steady_clock::time_point start_;
+  };
+
+  // Whether the next rebuild looks (and may re-cut).
+  bool looks_at_next_rebuild() const { return rebuilds_ + 1 >= kRebuildsPerLook; }
 
   // At a rebuild (collective): this rank's work since the last look when the parts should be
   // cut anew, none otherwise.
   std::optional<double> at_rebuild(const RankTeam& team) {
     if (++rebuilds_ < kRebuildsPerLook) return std::nullopt;
-    const auto now = std::chrono::steady_clock::now();
-    const double calls = RankTeam::seconds_in_calls();
-    const double work = std::chrono::duration<double>(now - since_).count() - (calls - calls_);
+    const double work = work_;
     const std::vector<double> each = team.all_gather<double>(std::vector<double>{work});
     const double mean = std::accumulate(each.begin(), each.end(), 0.0) / each.size();
     const double busiest = *std::max_element(each.begin(), each.end());
     rebuilds_ = 0;
-    since_ = now;
-    calls_ = RankTeam::seconds_in_calls();
+    work_ = 0.0;
     if (!started_) {  // the first look spans the start: nothing to compare yet
       started_ = true;
       return std::nullopt;
@@ -50,10 +70,9 @@ class WorkBalance {
   std::int64_t recuts() const { return recuts_; }
 
  private:
-  std::int64_t rebuilds_ = kRebuildsPerLook - 1;  // the first rebuild starts the clock
+  std::int64_t rebuilds_ = kRebuildsPerLook - 1;  // the first rebuild starts the count
   bool started_ = false;
-  std::chrono::steady_clock::time_point since_ = std::chrono::steady_clock::now();
-  double calls_ = 0.0;
+  double work_ = 0.0;                  // since the last look
   double busiest_ = 0.0, mean_ = 0.0;  // summed over the looks
   std::int64_t recuts_ = 0;
 };
