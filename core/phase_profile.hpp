@@ -64,6 +64,12 @@ class PhaseProfile {
     return static_cast<int>(phases_.size()) - 1;
   }
   const std::vector<Phase>& phases() const { return phases_; }
+  // Each phase's seconds, in the order of phases().
+  std::vector<double> phase_seconds() const {
+    std::vector<double> seconds;
+    for (const Phase& p : phases_) seconds.push_back(p.seconds);
+    return seconds;
+  }
 
   // One pass of a shared loop of `phase`: each thread's seconds on its share.
   void add_shares(int phase, std::span<const double> seconds) {

@@ -89,10 +89,10 @@ void RankTeam::min(std::span<double> values) const {
                 MPI_COMM_WORLD);
 }
 
-std::int64_t RankTeam::sum(std::int64_t value) const {
-  if (alone()) return value;
-  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
-  return value;
+void RankTeam::sum(std::span<std::int64_t> values) const {
+  if (alone() || values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_INT64_T, MPI_SUM,
+                MPI_COMM_WORLD);
 }
 
 bool RankTeam::any(bool value) const {
@@ -203,7 +203,7 @@ MpiSession::~MpiSession() {
 
 void RankTeam::max(std::span<double>) const {}
 void RankTeam::min(std::span<double>) const {}
-std::int64_t RankTeam::sum(std::int64_t value) const { return value; }
+void RankTeam::sum(std::span<std::int64_t>) const {}
 bool RankTeam::any(bool value) const { return value; }
 void RankTeam::all_gather_bytes(std::span<const std::byte> mine, const Room& joined) const {
   copy_to(joined(mine.size()), mine);

@@ -38,7 +38,11 @@ class RankTeam {
   // Element by element over the ranks, in place: exact in any order.
   void max(std::span<double> values) const;
   void min(std::span<double> values) const;
-  std::int64_t sum(std::int64_t value) const;
+  void sum(std::span<std::int64_t> values) const;
+  std::int64_t sum(std::int64_t value) const {
+    sum(std::span<std::int64_t>(&value, 1));
+    return value;
+  }
   bool any(bool value) const;
 
   // Every rank's values, joined in rank order, on every rank.

@@ -30,15 +30,28 @@ class RecursiveBisection {
  public:
   // `parts` >= 1 regions for points `x` with weights `weight` (same length, each >= 0).
   RecursiveBisection(std::span<const Vec<D>> x, std::span<const double> weight, int parts)
-      : parts_(parts), part_(x.size(), 0) {
-    if (parts < 1) throw std::invalid_argument("recursive bisection: parts must be at least 1");
-    if (weight.size() != x.size())
-      throw std::invalid_argument("recursive bisection: " + std::to_string(weight.size()) +
-                                  " weights for " + std::to_string(x.size()) + " points");
+      : RecursiveBisection(parts, x.size()) {
+    check(x.size(), weight.size(), parts);
     std::vector<std::uint32_t> points(x.size());
     std::iota(points.begin(), points.end(), 0u);
     build(x, weight, points, 0, points.size(), 0, parts);
   }
+
+  // The same share-out of points spread over the ranks of `team` (each passes its own; every
+  // rank gets the same regions), with no rank holding more than its own points: each cut is
+  // found by narrowing a histogram of the weight along its axis, kRounds times over kBins
+  // bins, each summed over the ranks in integer units of the largest weight / 2^30 (exact in
+  // any order, so alike on every rank, and the same regions for any split of the points over
+  // the ranks). A cut falls on a bin edge within side / kBins^kRounds of the weighted share,
+  // not between two points as in the build above. part() gives this rank's points' parts.
+  // Team: max, min (std::span<double>) and sum (std::span<std::int64_t>) over the ranks, in
+  // place (core/rank_team.hpp).
+  template <class Team>
+  static RecursiveBisection over_ranks(const Team& team, std::span<const Vec<D>> x,
+                                       std::span<const double> weight, int parts);
+
+  static constexpr int kBins = 64;
+  static constexpr int kRounds = 4;
 
   int parts() const { return parts_; }
   // The part of each point of the build, by index.
@@ -88,6 +101,14 @@ class RecursiveBisection {
     int lower = -1, upper = -1;
     int part = 0;
   };
+
+  RecursiveBisection(int parts, std::size_t points) : parts_(parts), part_(points, 0) {}
+  static void check(std::size_t points, std::size_t weights, int parts) {
+    if (parts < 1) throw std::invalid_argument("recursive bisection: parts must be at least 1");
+    if (weights != points)
+      throw std::invalid_argument("recursive bisection: " + std::to_string(weights) +
+                                  " weights for " + std::to_string(points) + " points");
+  }
 
   // Node for points[begin, end), which get parts [first_part, first_part + parts); its index.
   int build(std::span<const Vec<D>> x, std::span<const double> weight,
@@ -159,6 +180,131 @@ class RecursiveBisection {
   std::vector<int> part_;
   std::vector<Node> nodes_;
 };
+
+template <int D>
+template <class Team>
+RecursiveBisection<D> RecursiveBisection<D>::over_ranks(const Team& team, std::span<const Vec<D>> x,
+                                                        std::span<const double> weight, int parts) {
+  check(x.size(), weight.size(), parts);
+  RecursiveBisection rcb(parts, x.size());
+  const std::size_t n = x.size();
+  std::vector<double> largest{0.0};
+  for (double w : weight) largest[0] = std::max(largest[0], w);
+  team.max(largest);
+  const double unit = largest[0] > 0.0 ? std::ldexp(largest[0], -30) : 1.0;
+  std::vector<std::int64_t> units(n);
+  for (std::size_t i = 0; i < n; ++i) units[i] = std::llround(weight[i] / unit);
+
+  // The nodes still to cut, level by level: all of a level's nodes share each collective call.
+  struct Open {
+    int node, first_part, parts;
+  };
+  rcb.nodes_.push_back({-1, 0.0, -1, -1, 0});
+  std::vector<int> node_of(n, 0);
+  std::vector<Open> open;
+  if (parts > 1) open.push_back({0, 0, parts});
+  const double inf = std::numeric_limits<double>::infinity();
+  while (!open.empty()) {
+    const std::size_t m = open.size();
+    std::vector<int> slot(rcb.nodes_.size(), -1);
+    for (std::size_t k = 0; k < m; ++k) slot[open[k].node] = static_cast<int>(k);
+    // Each open node's bounding box, weight and point count.
+    std::vector<double> low(m * D, inf), high(m * D, -inf);
+    std::vector<std::int64_t> totals(2 * m, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int k = slot[node_of[i]];
+      if (k < 0) continue;
+      for (int a = 0; a < D; ++a) {
+        low[k * D + a] = std::min(low[k * D + a], x[i][a]);
+        high[k * D + a] = std::max(high[k * D + a], x[i][a]);
+      }
+      totals[2 * k] += units[i];
+      totals[2 * k + 1] += 1;
+    }
+    team.min(low);
+    team.max(high);
+    team.sum(totals);
+    // Along the longest side (the lowest axis of equal ones), between the box's low side and
+    // just above its high one; a node of fewer than two points, or of coincident ones, is a
+    // leaf. below: the weight under the bracket [lo, hi).
+    std::vector<int> axis(m, -1);
+    std::vector<double> lo(m), hi(m), target(m);
+    std::vector<std::int64_t> below(m, 0);
+    for (std::size_t k = 0; k < m; ++k) {
+      int best = 0;
+      for (int a = 1; a < D; ++a)
+        if (high[k * D + a] - low[k * D + a] > high[k * D + best] - low[k * D + best]) best = a;
+      if (totals[2 * k + 1] < 2 || !(high[k * D + best] > low[k * D + best])) continue;
+      axis[k] = best;
+      lo[k] = low[k * D + best];
+      hi[k] = std::nextafter(high[k * D + best], inf);
+      target[k] = static_cast<double>(totals[2 * k]) * (open[k].parts / 2) / open[k].parts;
+    }
+    const auto edge = [&](std::size_t k, int b) {
+      return b == kBins ? hi[k] : lo[k] + (hi[k] - lo[k]) * b / kBins;
+    };
+    // The bin of coordinate c in node k's bracket, by the same edges every rank computes.
+    const auto bin_of = [&](std::size_t k, double c) {
+      int b = std::clamp(static_cast<int>((c - lo[k]) / (hi[k] - lo[k]) * kBins), 0, kBins - 1);
+      while (b > 0 && c < edge(k, b)) --b;
+      while (b < kBins - 1 && !(c < edge(k, b + 1))) ++b;
+      return b;
+    };
+    for (int round = 0; round < kRounds; ++round) {
+      std::vector<std::int64_t> histogram(m * kBins, 0);
+      for (std::size_t i = 0; i < n; ++i) {
+        const int k = slot[node_of[i]];
+        if (k < 0 || axis[k] < 0) continue;
+        const double c = x[i][axis[k]];
+        if (c < lo[k] || !(c < hi[k])) continue;
+        histogram[k * kBins + bin_of(k, c)] += units[i];
+      }
+      team.sum(histogram);
+      // Narrow each bracket to the bin where the weight below crosses the target.
+      for (std::size_t k = 0; k < m; ++k) {
+        if (axis[k] < 0 || !(lo[k] < edge(k, 1))) continue;  // too narrow to split again
+        std::int64_t under = below[k];
+        int b = 0;
+        while (b < kBins - 1 && static_cast<double>(under + histogram[k * kBins + b]) <= target[k])
+          under += histogram[k * kBins + b++];
+        const double new_lo = edge(k, b), new_hi = edge(k, b + 1);
+        lo[k] = new_lo;
+        hi[k] = new_hi;
+        below[k] = under;
+        if (round + 1 == kRounds) {  // the closer edge: the lower one of two equally close
+          const double miss_low = std::abs(static_cast<double>(under) - target[k]);
+          const double miss_high =
+              std::abs(static_cast<double>(under + histogram[k * kBins + b]) - target[k]);
+          if (miss_high < miss_low) lo[k] = new_hi;
+        }
+      }
+    }
+    // Cut at lo: the points below it go to the lower parts.
+    std::vector<Open> next;
+    std::vector<int> lower_of(m, -1);
+    for (std::size_t k = 0; k < m; ++k) {
+      if (axis[k] < 0) continue;
+      const Open& o = open[k];
+      const int lower_parts = o.parts / 2;
+      const int lower = static_cast<int>(rcb.nodes_.size());
+      rcb.nodes_.push_back({-1, 0.0, -1, -1, o.first_part});
+      rcb.nodes_.push_back({-1, 0.0, -1, -1, o.first_part + lower_parts});
+      rcb.nodes_[o.node] = {axis[k], lo[k], lower, lower + 1, o.first_part};
+      lower_of[k] = lower;
+      if (lower_parts > 1) next.push_back({lower, o.first_part, lower_parts});
+      if (o.parts - lower_parts > 1)
+        next.push_back({lower + 1, o.first_part + lower_parts, o.parts - lower_parts});
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const int k = slot[node_of[i]];
+      if (k < 0 || axis[k] < 0) continue;
+      node_of[i] = lower_of[k] + (x[i][axis[k]] < lo[k] ? 0 : 1);
+    }
+    open = std::move(next);
+  }
+  for (std::size_t i = 0; i < n; ++i) rcb.part_[i] = rcb.nodes_[node_of[i]].part;
+  return rcb;
+}
 
 // The load imbalance of a share-out: the heaviest part's weight over the mean part's (1 for a
 // perfect one). part[i] in [0, parts) is point i's part.

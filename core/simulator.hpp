@@ -121,6 +121,11 @@ class Simulator {
   // the backend's own.
   virtual PhaseProfile& profile() { return profile_; }
   virtual const PhaseProfile& profile() const { return profile_; }
+  // profile()'s phase_seconds() on each MPI rank that shares the run, in rank order, on rank 0
+  // (collective; the others get none); this process's alone when it runs alone.
+  virtual std::vector<std::vector<double>> phase_seconds_by_rank() const {
+    return {profile().phase_seconds()};
+  }
 
  protected:
   bool stop_requested() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }

@@ -5,6 +5,8 @@
 // call (its summary still asks for the energies) and leaves when the leader is done.
 #pragma once
 
+#include <cstdint>
+#include <iterator>
 #include <memory>
 #include <string_view>
 #include <utility>
@@ -26,6 +28,7 @@ enum class RankOrder : int {
   kEnergy,
   kCheckpoint,
   kRestore,
+  kProfile,
   kDone
 };
 
@@ -33,6 +36,21 @@ struct RankCall {
   RankOrder order = RankOrder::kDone;
   double time = 0.0;
 };
+
+// Each rank's row, on rank 0 in rank order (none elsewhere). Collective.
+inline std::vector<std::vector<double>> rows_on_rank0(const RankTeam& ranks,
+                                                      const std::vector<double>& mine) {
+  const std::vector<std::int64_t> sizes =
+      ranks.gather<std::int64_t>(std::vector<std::int64_t>{std::ssize(mine)});
+  const std::vector<double> all = ranks.gather<double>(mine);
+  std::vector<std::vector<double>> rows;
+  auto at = all.begin();
+  for (std::int64_t size : sizes) {
+    rows.emplace_back(at, at + size);
+    at += size;
+  }
+  return rows;
+}
 
 template <int D>
 class RankLeader final : public Simulator<D> {
@@ -83,6 +101,10 @@ class RankLeader final : public Simulator<D> {
     call({RankOrder::kRestore});
     sim_->restore(in);
   }
+  std::vector<std::vector<double>> phase_seconds_by_rank() const override {
+    call({RankOrder::kProfile});
+    return rows_on_rank0(ranks_, sim_->profile().phase_seconds());
+  }
 
  private:
   void call(RankCall c) const { ranks_.broadcast(c); }
@@ -131,6 +153,9 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       }
       case RankOrder::kRestore:
         sim.restore(*archive);
+        break;
+      case RankOrder::kProfile:
+        rows_on_rank0(ranks, sim.profile().phase_seconds());
         break;
       case RankOrder::kDone:
         return;

@@ -291,7 +291,8 @@ RunOutcome run_simulation(Simulator<D>& sim, const Scene& requested, const Scene
   const std::string timing = timing_text(summary, sim.stats(), backend.counts_events, wall, cpu);
   log.report() << timing;
   if (options.profile) {
-    summary["profile"] = profile_json(sim.profile(), loop_seconds, scene.run.threads);
+    summary["profile"] =
+        profile_json(sim.profile(), loop_seconds, scene.run.threads, sim.phase_seconds_by_rank());
     const std::string table = profile_text(summary["profile"]);
     log.report() << table;
     if (options.quiet) out << table;  // asked for: shown even without progress rows
@@ -331,6 +332,7 @@ int run_scene(const Scene& requested, const RunOptions& options,
   }
   std::unique_ptr<Simulator<D>> sim = dem::make_dem_simulator<D>(support.resolved, ranks);
   if (ranks.rank() != 0) {
+    if (options.profile) sim->profile().enable();  // rank 0 shows the spread over ranks
     // An interrupt is rank 0's to handle: it stops every rank at the same step.
     std::signal(SIGINT, SIG_IGN);
     std::signal(SIGTERM, SIG_IGN);

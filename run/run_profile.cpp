@@ -7,14 +7,18 @@
 
 namespace granjet {
 
-nlohmann::json profile_json(const PhaseProfile& profile, double loop_seconds, int threads) {
+nlohmann::json profile_json(const PhaseProfile& profile, double loop_seconds, int threads,
+                            const std::vector<std::vector<double>>& by_rank) {
   using Kind = PhaseProfile::Kind;
   nlohmann::json j;
   j["loop_seconds"] = loop_seconds;
   j["threads"] = threads;
   const double scale = loop_seconds > 0.0 ? 1.0 / loop_seconds : 0.0;
+  const bool over_ranks = by_rank.size() > 1;
+  if (over_ranks) j["ranks"] = by_rank.size();
   nlohmann::json phases = nlohmann::json::array();
-  for (const PhaseProfile::Phase& p : profile.phases()) {
+  for (std::size_t k = 0; k < profile.phases().size(); ++k) {
+    const PhaseProfile::Phase& p = profile.phases()[k];
     if (p.calls == 0) continue;  // a phase this scene never ran (no plate, no tethers ...)
     nlohmann::json phase = {{"name", p.name},
                             {"kind", p.kind == Kind::kSerial ? "serial" : "parallel"},
@@ -24,6 +28,18 @@ nlohmann::json profile_json(const PhaseProfile& profile, double loop_seconds, in
     if (p.slowest_seconds > 0.0) {
       phase["work_seconds"] = p.work_seconds;
       phase["slowest_seconds"] = p.slowest_seconds;
+    }
+    if (over_ranks) {
+      double fastest = std::numeric_limits<double>::infinity(), slowest = 0.0, sum = 0.0;
+      for (const std::vector<double>& row : by_rank) {
+        const double s = k < row.size() ? row[k] : 0.0;
+        fastest = std::min(fastest, s);
+        slowest = std::max(slowest, s);
+        sum += s;
+      }
+      phase["over_ranks"] = {{"fastest", fastest},
+                             {"mean", sum / static_cast<double>(by_rank.size())},
+                             {"slowest", slowest}};
     }
     phases.push_back(phase);
   }
@@ -85,6 +101,23 @@ std::string profile_text(const nlohmann::json& profile) {
          "  share's excess over it; the rest of the phase is forks, joins, barriers and "
          "one-thread\n"
          "  parts\n";
+  if (!profile.contains("ranks")) return out.str();
+  std::snprintf(line, sizeof line,
+                "over %d ranks: each phase's seconds on the fastest rank, the mean, the slowest\n",
+                profile["ranks"].get<int>());
+  out << line;
+  std::snprintf(line, sizeof line, "  %-44s %10s %10s %10s\n", "phase", "fastest", "mean",
+                "slowest");
+  out << line;
+  for (const nlohmann::json& p : profile["phases"]) {
+    const nlohmann::json& r = p["over_ranks"];
+    std::snprintf(line, sizeof line, "  %-44s %10.4f %10.4f %10.4f\n",
+                  p["name"].get<std::string>().c_str(), r["fastest"].get<double>(),
+                  r["mean"].get<double>(), r["slowest"].get<double>());
+    out << line;
+  }
+  out << "  the waits for other ranks are in the ranks' phases: there the slowest rank is the\n"
+         "  one that waited longest\n";
   return out.str();
 }
 

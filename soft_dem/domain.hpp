@@ -76,7 +76,8 @@ class Domain {
   double reach() const { return reach_; }
 
   // Cuts the parts anew from the owned grains of every rank (`owned` flags; all true when every
-  // rank holds the same grains, as at the start) with their weights. Collective.
+  // rank holds the same grains, as at the start) with their weights. Collective. A re-cut
+  // bisects over the ranks: no rank gathers the others' grains.
   void partition(std::span<const Vec<D>> x, std::span<const double> weight,
                  std::span<const std::uint8_t> owned, bool everywhere_alike) {
     std::vector<Vec<D>> mine_x;
@@ -86,17 +87,10 @@ class Domain {
         mine_x.push_back(x[i]);
         mine_w.push_back(weight[i]);
       }
-    if (everywhere_alike) {
+    if (everywhere_alike)
       parts_.emplace(mine_x, mine_w, ranks());
-      return;
-    }
-    std::vector<double> flat(mine_x.size() * D);
-    for (std::size_t i = 0; i < mine_x.size(); ++i) put<D>(&flat[i * D], mine_x[i]);
-    const std::vector<double> all_flat = team_.all_gather<double>(flat);
-    const std::vector<double> all_w = team_.all_gather<double>(mine_w);
-    std::vector<Vec<D>> all_x(all_w.size());
-    for (std::size_t i = 0; i < all_x.size(); ++i) all_x[i] = get<D, Vec<D>>(&all_flat[i * D]);
-    parts_.emplace(all_x, all_w, ranks());
+    else
+      parts_.emplace(RecursiveBisection<D>::over_ranks(team_, mine_x, mine_w, ranks()));
   }
   bool partitioned() const { return parts_.has_value(); }
   int owner_of(const Vec<D>& x) const { return parts_->part_of(x); }

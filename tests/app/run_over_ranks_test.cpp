@@ -1,9 +1,11 @@
 // `mpirun -n 2 granjet run` writes the file one process writes, dataset for dataset (h5diff):
 // frames with forces and contacts, energies, inline analysis and a checkpoint, from a jet with
-// friction on the tethered target.
+// friction on the tethered target. Its `--profile` gives each phase's spread over the ranks.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "command_fixture.hpp"
@@ -22,12 +24,27 @@ TEST_F(RunOverRanks, TwoRanksWriteTheFileOfOne) {
   const std::string one = (dir_ / "one.h5").string(), two = (dir_ / "two.h5").string();
   ASSERT_EQ(granjet("run " + scene("jet3d.ini") + sets + " --out " + one), 0) << err_;
   // Root needs --allow-run-as-root; two ranks on a machine of any size need --oversubscribe.
-  const std::string cmd = std::string(GRANJET_MPIEXEC) +
-                          " --allow-run-as-root --oversubscribe -n 2 " + GRANJET_BINARY + " run " +
-                          scene("jet3d.ini") + sets + " --out " + two + " > " +
-                          (dir_ / "mpi.txt").string() + " 2>&1";
+  const std::string cmd =
+      std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe -n 2 " + GRANJET_BINARY +
+      " run " + scene("jet3d.ini") + sets + " --profile --summary " + (dir_ / "two.json").string() +
+      " --out " + two + " > " + (dir_ / "mpi.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_TRUE(same_hdf5(one, two));
+  std::ifstream in(dir_ / "two.json");
+  const nlohmann::json profile = nlohmann::json::parse(in)["profile"];
+  EXPECT_EQ(profile["ranks"], 2);
+  bool ghosts = false;
+  for (const nlohmann::json& p : profile["phases"]) {
+    const nlohmann::json& r = p["over_ranks"];
+    EXPECT_LE(r["fastest"].get<double>(), r["mean"].get<double>()) << p["name"];
+    EXPECT_LE(r["mean"].get<double>(), r["slowest"].get<double>()) << p["name"];
+    EXPECT_LE(p["seconds"].get<double>(), r["slowest"].get<double>()) << p["name"];  // rank 0's
+    if (p["name"] == "ranks: ghost states") {
+      ghosts = true;
+      EXPECT_GT(r["fastest"].get<double>(), 0.0) << "the other rank's profile is not in";
+    }
+  }
+  EXPECT_TRUE(ghosts);
 }
 #endif
 

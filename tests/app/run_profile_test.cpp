@@ -89,6 +89,34 @@ TEST(RunProfile, SerialShareCountsSerialPhasesAndTheUntimedRest) {
   EXPECT_NE(text.find("serial share"), std::string::npos);
 }
 
+// Over ranks: each phase's fastest rank, mean and slowest rank, a rank without a phase (the
+// followers look at no output) counting zero, and the table that shows them.
+TEST(RunProfile, OverRanksGivesEachPhasesSpread) {
+  PhaseProfile profile;
+  profile.enable();
+  const int pass = profile.phase("pass", Kind::kParallel);
+  const int output = profile.phase("output", Kind::kSerial);
+  { const PhaseProfile::Timer timing(&profile, pass); }
+  { const PhaseProfile::Timer timing(&profile, output); }
+  const std::vector<std::vector<double>> by_rank = {{1.0, 0.5}, {3.0}, {2.0}};
+  const nlohmann::json j = profile_json(profile, 4.0, 1, by_rank);
+  EXPECT_EQ(j["ranks"], 3);
+  const nlohmann::json& a = j["phases"][0]["over_ranks"];
+  EXPECT_EQ(a["fastest"], 1.0);
+  EXPECT_EQ(a["mean"], 2.0);
+  EXPECT_EQ(a["slowest"], 3.0);
+  const nlohmann::json& b = j["phases"][1]["over_ranks"];
+  EXPECT_EQ(b["fastest"], 0.0);
+  EXPECT_NEAR(b["mean"].get<double>(), 0.5 / 3.0, 1e-15);
+  EXPECT_EQ(b["slowest"], 0.5);
+  EXPECT_NE(profile_text(j).find("over 3 ranks"), std::string::npos);
+  // One rank: no spread.
+  const nlohmann::json alone = profile_json(profile, 4.0, 1, {{1.0, 0.5}});
+  EXPECT_FALSE(alone.contains("ranks"));
+  EXPECT_FALSE(alone["phases"][0].contains("over_ranks"));
+  EXPECT_EQ(profile_text(alone).find("ranks"), std::string::npos);
+}
+
 using GranjetCommand = testing::CommandTest;
 
 // The soft DEM's phases and the observers' looks are all there, their sum is within the loop's

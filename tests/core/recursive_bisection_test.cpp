@@ -1,5 +1,7 @@
 // RecursiveBisection: every point in the part part_of gives its position, parts balanced by
-// weight (not by count), cuts across the longest side, and coincident points kept together.
+// weight (not by count), cuts across the longest side, and coincident points kept together;
+// the same of the build over ranks (over_ranks, here on one rank; tests/ranks splits the points
+// over several).
 #include "core/recursive_bisection.hpp"
 
 #include <gtest/gtest.h>
@@ -7,6 +9,8 @@
 #include <algorithm>
 #include <random>
 #include <vector>
+
+#include "core/rank_team.hpp"
 
 namespace granjet {
 namespace {
@@ -141,6 +145,71 @@ TEST(RecursiveBisection, PartsNearAGrainHoldEveryPartnerWithinReach) {
   near.clear();
   halves.for_each_part_near(Vec<2>(-0.5, 0.0), 1.0, [&](int part) { near.push_back(part); });
   EXPECT_EQ(near, (std::vector<int>{0, 1}));
+}
+
+// The build over ranks: every point in the part of its position, no part empty, and each part
+// within a point's weight of its share per cut (its cuts fall on histogram edges, not between
+// points, so they come within side / 64^4 of the share).
+TEST(RecursiveBisection, OverRanksBalancesWeightAndPlacesEveryPoint) {
+  const std::vector<Vec<3>> x = random_points<3>(2000, 7);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.1, 3.0);
+  std::vector<double> w(x.size());
+  for (double& value : w) value = u(rng);
+  double total = 0.0;
+  for (double value : w) total += value;
+  for (int parts = 1; parts <= 7; ++parts) {
+    const auto rcb = RecursiveBisection<3>::over_ranks(RankTeam(), x, w, parts);
+    std::vector<int> count(parts, 0);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      ASSERT_GE(rcb.part()[i], 0);
+      ASSERT_LT(rcb.part()[i], parts);
+      EXPECT_EQ(rcb.part_of(x[i]), rcb.part()[i]) << "point " << i << ", " << parts << " parts";
+      ++count[rcb.part()[i]];
+    }
+    for (int c : count) EXPECT_GT(c, 0) << parts << " parts";
+    // At most 3 levels of cuts, each missing by at most the heaviest point (3.0).
+    EXPECT_LT(imbalance(rcb.part(), w, parts), 1.0 + 3 * 3.0 / (total / parts)) << parts;
+  }
+}
+
+// A jet's lattice: layers of points that share their coordinate bit for bit, and a heavy
+// cluster. The cuts fall between layers and share the weight as the build on one process does,
+// within a layer's weight.
+TEST(RecursiveBisection, OverRanksCutsALatticeBetweenItsLayers) {
+  std::vector<Vec<3>> x;
+  std::vector<double> w;
+  for (int layer = 0; layer < 60; ++layer)
+    for (int k = 0; k < 50; ++k) {
+      x.push_back(Vec<3>(0.1 * (k % 7), 0.1 * (k / 7), 1.0 * layer));
+      w.push_back(layer < 10 ? 8.0 : 1.0);  // the impact's end is heavy
+    }
+  double total = 0.0;
+  for (double value : w) total += value;
+  for (int parts : {2, 3, 4, 8}) {
+    const auto rcb = RecursiveBisection<3>::over_ranks(RankTeam(), x, w, parts);
+    for (std::size_t i = 0; i < x.size(); ++i) ASSERT_EQ(rcb.part_of(x[i]), rcb.part()[i]);
+    const double layer_weight = 50 * 8.0;
+    EXPECT_LT(imbalance(rcb.part(), w, parts), 1.0 + 3 * layer_weight / (total / parts))
+        << parts << " parts";
+    const RecursiveBisection<3> serial(x, w, parts);
+    EXPECT_NEAR(imbalance(rcb.part(), w, parts), imbalance(serial.part(), w, parts),
+                3 * layer_weight / (total / parts))
+        << parts << " parts";
+  }
+}
+
+TEST(RecursiveBisection, OverRanksKeepsCoincidentPointsTogether) {
+  const std::vector<Vec<2>> x(10, Vec<2>(1.0, 2.0));
+  const std::vector<double> w(x.size(), 1.0);
+  const auto rcb = RecursiveBisection<2>::over_ranks(RankTeam(), x, w, 3);
+  for (int p : rcb.part()) EXPECT_EQ(p, 0);
+  EXPECT_EQ(rcb.part_of(Vec<2>(1.0, 2.0)), 0);
+  const auto none = RecursiveBisection<2>::over_ranks(RankTeam(), std::vector<Vec<2>>{},
+                                                      std::vector<double>{}, 4);
+  EXPECT_EQ(none.part_of(Vec<2>(0.0, 0.0)), 0);
+  EXPECT_THROW(RecursiveBisection<2>::over_ranks(RankTeam(), x, std::vector<double>(3), 2),
+               std::invalid_argument);
 }
 
 TEST(RecursiveBisection, ImbalanceIsTheHeaviestPartOverTheMean) {

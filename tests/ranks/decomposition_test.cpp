@@ -6,7 +6,9 @@
 // only one that holds them whole (the others hold none).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -176,6 +178,35 @@ TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
     EXPECT_EQ(one->stats().contacts, spread->stats().contacts) << "t = " << t;
     EXPECT_EQ(one->stats().contacts, t < 0.2 ? 1 : 0) << "t = " << t;
     expect_samples_of_one_rank<3>(*one, *spread);
+  }
+}
+
+// The bisection over ranks, of points dealt out to the ranks in turn, gives the regions that
+// one process cuts from all the points: its sums are exact integers, whatever the split.
+TEST(Ranks, BisectionOverRanksIsTheSameForAnySplitOfThePoints) {
+  const RankTeam world = RankTeam::world();
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-5.0, 5.0), heavy(0.1, 9.0);
+  std::vector<Vec<3>> x(3000);
+  std::vector<double> w(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    x[i] = Vec<3>(u(rng), 0.3 * u(rng), std::floor(u(rng)));  // z: layers
+    w[i] = heavy(rng);
+  }
+  std::vector<Vec<3>> mine_x;
+  std::vector<double> mine_w;
+  for (std::size_t i = world.rank(); i < x.size(); i += world.size()) {
+    mine_x.push_back(x[i]);
+    mine_w.push_back(w[i]);
+  }
+  for (int parts : {world.size(), 5, 16}) {
+    const auto spread = RecursiveBisection<3>::over_ranks(world, mine_x, mine_w, parts);
+    const auto alone = RecursiveBisection<3>::over_ranks(RankTeam(), x, w, parts);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) differ += spread.part_of(x[i]) != alone.part()[i];
+    EXPECT_EQ(differ, 0u) << parts << " parts";
+    for (std::size_t k = 0; k < mine_x.size(); ++k)
+      ASSERT_EQ(spread.part()[k], spread.part_of(mine_x[k]));
   }
 }
 
