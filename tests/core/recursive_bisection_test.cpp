@@ -25,24 +25,36 @@ std::vector<Vec<D>> random_points(std::size_t n, unsigned seed) {
   return x;
 }
 
-// Every point's part is in range, is the part of its position, and the share-out is the same
-// when built again.
+std::vector<double> random_weights(std::size_t n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.1, 3.0);
+  std::vector<double> w(n);
+  for (double& value : w) value = u(rng);
+  return w;
+}
+
+// Every point's part is in range and is the part of its position, and no part is empty.
+template <int D>
+void expect_every_point_in_the_part_of_its_position(const RecursiveBisection<D>& rcb,
+                                                    const std::vector<Vec<D>>& x) {
+  const int parts = rcb.parts();
+  std::vector<int> count(parts, 0);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    ASSERT_GE(rcb.part()[i], 0);
+    ASSERT_LT(rcb.part()[i], parts);
+    EXPECT_EQ(rcb.part_of(x[i]), rcb.part()[i]) << "point " << i << ", " << parts << " parts";
+    ++count[rcb.part()[i]];
+  }
+  for (int c : count) EXPECT_GT(c, 0) << parts << " parts";
+}
+
+// Every point in the part of its position, and the share-out the same when built again.
 TEST(RecursiveBisection, PartOfAPointsPositionIsItsPart) {
   const std::vector<Vec<3>> x = random_points<3>(2000, 7);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.1, 3.0);
-  std::vector<double> w(x.size());
-  for (double& value : w) value = u(rng);
+  const std::vector<double> w = random_weights(x.size(), 11);
   for (int parts = 1; parts <= 7; ++parts) {
     const RecursiveBisection<3> rcb(x, w, parts);
-    std::vector<int> count(parts, 0);
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      ASSERT_GE(rcb.part()[i], 0);
-      ASSERT_LT(rcb.part()[i], parts);
-      EXPECT_EQ(rcb.part_of(x[i]), rcb.part()[i]) << "point " << i << ", " << parts << " parts";
-      ++count[rcb.part()[i]];
-    }
-    for (int c : count) EXPECT_GT(c, 0) << parts << " parts";
+    expect_every_point_in_the_part_of_its_position(rcb, x);
     EXPECT_EQ(RecursiveBisection<3>(x, w, parts).part(), rcb.part());
   }
 }
@@ -152,22 +164,12 @@ TEST(RecursiveBisection, PartsNearAGrainHoldEveryPartnerWithinReach) {
 // points, so they come within side / 64^4 of the share).
 TEST(RecursiveBisection, OverRanksBalancesWeightAndPlacesEveryPoint) {
   const std::vector<Vec<3>> x = random_points<3>(2000, 7);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(0.1, 3.0);
-  std::vector<double> w(x.size());
-  for (double& value : w) value = u(rng);
+  const std::vector<double> w = random_weights(x.size(), 11);
   double total = 0.0;
   for (double value : w) total += value;
   for (int parts = 1; parts <= 7; ++parts) {
     const auto rcb = RecursiveBisection<3>::over_ranks(RankTeam(), x, w, parts);
-    std::vector<int> count(parts, 0);
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      ASSERT_GE(rcb.part()[i], 0);
-      ASSERT_LT(rcb.part()[i], parts);
-      EXPECT_EQ(rcb.part_of(x[i]), rcb.part()[i]) << "point " << i << ", " << parts << " parts";
-      ++count[rcb.part()[i]];
-    }
-    for (int c : count) EXPECT_GT(c, 0) << parts << " parts";
+    expect_every_point_in_the_part_of_its_position(rcb, x);
     // At most 3 levels of cuts, each missing by at most the heaviest point (3.0).
     EXPECT_LT(imbalance(rcb.part(), w, parts), 1.0 + 3 * 3.0 / (total / parts)) << parts;
   }

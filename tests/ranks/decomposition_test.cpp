@@ -3,13 +3,17 @@
 // counts: both integrators, friction on and off, the tethered and fixed targets, the plate
 // and the removal of escaped grains. Every rank runs the one-rank simulation alongside and
 // compares: the energies and counts on every rank, the grains and samples on rank 0, the
-// only one that holds them whole (the others hold none).
+// only one that holds them whole (the others hold none). Also the parts' bisection over ranks
+// and the work balance that decides when to cut them anew.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/rank_team.hpp"
@@ -17,6 +21,7 @@
 #include "core/state_archive.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/work_balance.hpp"
 
 namespace granjet {
 namespace {
@@ -208,6 +213,35 @@ TEST(Ranks, BisectionOverRanksIsTheSameForAnySplitOfThePoints) {
     for (std::size_t k = 0; k < mine_x.size(); ++k)
       ASSERT_EQ(spread.part()[k], spread.part_of(mine_x[k]));
   }
+}
+
+// The balance compares the ranks' pass time every kRebuildsPerLook rebuilds (the first look,
+// at the run's first rebuild, has nothing to compare) and, the busiest rank over the mean by
+// more than kRecutImbalance, has every rank cut anew with its own work. Rank 0 passes 40 ms,
+// the others 10 ms.
+TEST(Ranks, WorkBalanceCutsAnewWhenTheBusiestRankPassesTheMean) {
+  using dem::WorkBalance;
+  const RankTeam world = RankTeam::world();
+  WorkBalance balance;
+  EXPECT_TRUE(balance.looks_at_next_rebuild());
+  EXPECT_FALSE(balance.at_rebuild(world));
+  const double mine = world.rank() == 0 ? 0.040 : 0.010;
+  {
+    const WorkBalance::Pass pass(balance);
+    std::this_thread::sleep_for(std::chrono::duration<double>(mine));
+  }
+  for (int k = 1; k < WorkBalance::kRebuildsPerLook; ++k) {
+    EXPECT_FALSE(balance.looks_at_next_rebuild());
+    EXPECT_FALSE(balance.at_rebuild(world));
+  }
+  ASSERT_TRUE(balance.looks_at_next_rebuild());
+  const std::optional<double> work = balance.at_rebuild(world);
+  ASSERT_TRUE(work.has_value()) << "no re-cut";
+  EXPECT_GE(*work, mine);
+  EXPECT_LT(*work, mine + 0.030);
+  const double mean = (0.040 + 0.010 * (world.size() - 1)) / world.size();
+  EXPECT_GT(balance.imbalance(), 0.5 * (1.0 + 0.040 / mean));
+  EXPECT_EQ(balance.recuts(), 1);
 }
 
 TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
