@@ -1,7 +1,7 @@
 // DemSimulator's parts that spread one run over MPI ranks (soft_dem/domain.hpp says how and
 // why the results stay those of one rank): the grains' moves at a rebuild, the per-step sync,
 // and the sums over all grains in the order one rank makes them. Included by
-// dem_simulator.cpp, where the simulator is instantiated.
+// dem_simulator_impl.hpp with the rest of its members.
 #pragma once
 
 #include <algorithm>

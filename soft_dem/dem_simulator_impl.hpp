@@ -1,4 +1,6 @@
-#include "soft_dem/dem_simulator.hpp"
+// DemSimulator's members and its factory, instantiated per dimension by
+// dem_simulator_2d.cpp and dem_simulator_3d.cpp (two units that compile side by side).
+#pragma once
 
 #include <algorithm>
 #include <atomic>
@@ -16,6 +18,7 @@
 #include "core/jet_geometry.hpp"
 #include "soft_dem/contact_coefficients.hpp"
 #include "soft_dem/contact_laws.hpp"
+#include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/dem_simulator_ranks.hpp"
 
 namespace granjet::dem {
@@ -850,7 +853,7 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
   return e;
 }
 
-namespace {
+namespace factory {
 
 // The periodic gas scenes' box (gas_lattice's), which must hold three neighbour cells across.
 template <int D>
@@ -888,22 +891,7 @@ std::unique_ptr<Simulator<D>> make_with_law(const Scene& scene, const RankTeam& 
   return make_jet_with_law<D, Law>(scene, ranks);
 }
 
-}  // namespace
-
-std::string contact_law_refusal(const Scene& scene) {
-  return with_contact_law(
-      scene.contact.model, [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
-        return std::string(scene.dimension == 2 ? LawOf<2, false>::kUnsupported
-                                                : LawOf<3, false>::kUnsupported);
-      });
-}
-
-double peak_overlap(const Scene& scene, double speed) {
-  return with_contact_law(scene.contact.model,
-                          [&]<template <int, bool> class LawOf>(ContactLaw<LawOf>) {
-                            return LawOf<3, false>::peak_overlap(scene.contact, speed);
-                          });
-}
+}  // namespace factory
 
 template <int D>
 std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene, const RankTeam& ranks) {
@@ -917,28 +905,12 @@ std::unique_ptr<Simulator<D>> make_dem_simulator(const Scene& scene, const RankT
           // (rolling scenes are frictional and not periodic: scene_support refuses the rest);
           // the law's traits then say what is stored and integrated.
           if (scene.contact.rolling_friction > 0.0 && !scene.periodic())
-            return make_jet_with_law<D, Rolling<LawOf<D, true>>>(scene, ranks);
+            return factory::make_jet_with_law<D, Rolling<LawOf<D, true>>>(scene, ranks);
           if (scene.needs_history() || scene.needs_rotation())
-            return make_with_law<D, LawOf<D, true>>(scene, ranks);
-          return make_with_law<D, LawOf<D, false>>(scene, ranks);
+            return factory::make_with_law<D, LawOf<D, true>>(scene, ranks);
+          return factory::make_with_law<D, LawOf<D, false>>(scene, ranks);
         }
       });
 }
-
-// The linear law's instances, for tests and benchmarks that build a simulator directly; other
-// laws are instantiated by the factory above.
-template class DemSimulator<2, LinearSpringDashpot<2, false>, false>;
-template class DemSimulator<2, LinearSpringDashpot<2, false>, true>;
-template class DemSimulator<2, LinearSpringDashpot<2, true>, false>;
-template class DemSimulator<2, LinearSpringDashpot<2, true>, true>;
-template class DemSimulator<3, LinearSpringDashpot<3, false>, false>;
-template class DemSimulator<3, LinearSpringDashpot<3, false>, true>;
-template class DemSimulator<3, LinearSpringDashpot<3, true>, false>;
-template class DemSimulator<3, LinearSpringDashpot<3, true>, true>;
-// Rolling resistance on the linear law, monodisperse, for tests that set the grains' spins.
-template class DemSimulator<2, Rolling<LinearSpringDashpot<2, true>>, true>;
-template class DemSimulator<3, Rolling<LinearSpringDashpot<3, true>>, true>;
-template std::unique_ptr<Simulator<2>> make_dem_simulator<2>(const Scene&, const RankTeam&);
-template std::unique_ptr<Simulator<3>> make_dem_simulator<3>(const Scene&, const RankTeam&);
 
 }  // namespace granjet::dem
