@@ -1,11 +1,11 @@
 #include "core/initial_state.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 
 #include "core/jet_geometry.hpp"
@@ -22,11 +22,6 @@ namespace {
 // length; wider lattices are left as they are.
 constexpr double kLatticeClearance = 1e-9;
 
-template <class T>
-bool is_complete(const std::vector<T>& sites, std::int64_t n) {
-  return static_cast<std::int64_t>(sites.size()) == n;
-}
-
 // Whether (x, y) lies in the 3D jet's cross section [model §5]: the cylinder of diameter D_jet,
 // or the rectangle of the anisotropy runs, long side along x, short side along y (JetSpec).
 bool in_cross_section(const JetSpec& jet, double x, double y) {
@@ -39,16 +34,18 @@ bool in_cross_section(const JetSpec& jet, double x, double y) {
 }
 
 // Jet lattice sites come layer by layer away from the target; each survives the random removal
-// with probability phi~0 [model §5], and the first N survivors make the jet.
+// with probability phi~0 [model §5], and the first N survivors make the jet. Only the share's
+// survivors are kept (every site draws its number all the same).
 // 3D: fcc with nearest-neighbour distance `spacing`, cut to the cross section.
-std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) {
+std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng, GrainShare share) {
   const double a = std::sqrt(2.0) * jet.spacing;  // cube edge
   const int n_xy = static_cast<int>(jet.outer_radius() / a) + 2;
   // Each half cube layer holds two of the four fcc basis sites.
   constexpr std::array<std::array<double, 2>, 4> kBasis{
       {{0.0, 0.0}, {0.5, 0.5}, {0.5, 0.0}, {0.0, 0.5}}};
   std::vector<Vec<3>> sites;
-  for (int layer = 0; !is_complete(sites, jet.grains); ++layer) {
+  std::int64_t survivors = 0;
+  for (int layer = 0; survivors < jet.grains; ++layer) {
     const int sub = layer % 2;
     const double z = front + a * (layer / 2 + 0.5 * sub);
     std::vector<std::pair<double, double>> xy;
@@ -61,27 +58,28 @@ std::vector<Vec<3>> jet_sites_3d(const JetSpec& jet, double front, Random& rng) 
     std::sort(xy.begin(), xy.end());
     for (const auto& [x, y] : xy) {
       if (rng.uniform() >= jet.phi_tilde) continue;
-      sites.emplace_back(x, y, z);
-      if (is_complete(sites, jet.grains)) break;
+      if (share.holds(survivors, jet.grains)) sites.emplace_back(x, y, z);
+      if (++survivors == jet.grains) break;
     }
   }
   return sites;
 }
 
 // 2D: triangular lattice of spacing `spacing`, rows across the strip |y| <= R_jet.
-std::vector<Vec<2>> jet_sites_2d(const JetSpec& jet, double front, Random& rng) {
+std::vector<Vec<2>> jet_sites_2d(const JetSpec& jet, double front, Random& rng, GrainShare share) {
   const double s = jet.spacing;
   const double row_height = s * std::sqrt(3.0) / 2.0;
   const double half_width = 0.5 * jet.diameter;
   const int n_y = static_cast<int>(half_width / s) + 2;
   std::vector<Vec<2>> sites;
-  for (int row = 0; !is_complete(sites, jet.grains); ++row) {
+  std::int64_t survivors = 0;
+  for (int row = 0; survivors < jet.grains; ++row) {
     const double offset = 0.5 * s * (row % 2);
     for (int c = -n_y; c <= n_y; ++c) {
       const double y = c * s + offset;
       if (std::abs(y) > half_width + 1e-9 || rng.uniform() >= jet.phi_tilde) continue;
-      sites.emplace_back(front + row * row_height, y);
-      if (is_complete(sites, jet.grains)) break;
+      if (share.holds(survivors, jet.grains)) sites.emplace_back(front + row * row_height, y);
+      if (++survivors == jet.grains) break;
     }
   }
   return sites;
@@ -133,27 +131,27 @@ void jitter_wall_sites(std::vector<Vec<D>>& sites, const WallSpec& wall, std::ui
   }
 }
 
-// Grain diameters: all d, or exactly half d and half small_diameter in random order.
+// Grain diameters: all d (none listed), or exactly half d and half small_diameter in random
+// order.
 std::vector<double> jet_diameters(const JetSpec& jet, Random& rng) {
+  if (jet.dispersity != Dispersity::kBi) return {};
   std::vector<double> diameters(jet.grains, 1.0);
-  if (jet.dispersity == Dispersity::kBi) {
-    std::fill(diameters.begin() + jet.grains / 2, diameters.end(), jet.small_diameter);
-    rng.shuffle(diameters);
-  }
+  std::fill(diameters.begin() + jet.grains / 2, diameters.end(), jet.small_diameter);
+  rng.shuffle(diameters);
   return diameters;
 }
 
 template <int D>
-Particles<D> build_jet(const Scene& scene) {
+Particles<D> build_jet(const Scene& scene, GrainShare share) {
   Random rng(scene.run.seed);
   const double front = kTargetSurface + scene.jet.gap + 0.5;
   std::vector<Vec<D>> sites;
   std::vector<Vec<D>> wall;
   if constexpr (D == 3) {
-    sites = jet_sites_3d(scene.jet, front, rng);
+    sites = jet_sites_3d(scene.jet, front, rng, share);
     wall = wall_sites_3d(scene.wall);
   } else {
-    sites = jet_sites_2d(scene.jet, front, rng);
+    sites = jet_sites_2d(scene.jet, front, rng, share);
     wall = wall_sites_2d(scene.wall);
   }
   jitter_wall_sites<D>(wall, scene.wall, scene.run.seed);
@@ -161,23 +159,38 @@ Particles<D> build_jet(const Scene& scene) {
   Vec<D> velocity = Vec<D>::Zero();
   velocity[kJetAxis<D>] = -scene.jet.speed;
   Particles<D> p;
-  GrainId id = 0;
+  const auto first = static_cast<GrainId>(scene.jet.grains * share.part / share.parts);
   const bool touching = scene.jet.spacing == 1.0;
   Vec<D> front_centre = Vec<D>::Zero();
   front_centre[kJetAxis<D>] = front;
-  for (std::size_t i = 0; i < sites.size(); ++i) {
-    Vec<D> x = sites[i];
+  for (std::size_t k = 0; k < sites.size(); ++k) {
+    const GrainId id = first + static_cast<GrainId>(k);
+    const double diameter = diameters.empty() ? 1.0 : diameters[static_cast<std::size_t>(id)];
+    Vec<D> x = sites[k];
     if (touching) x = front_centre + (1.0 + kLatticeClearance) * (x - front_centre);
     // The front row sits `gap` from the target whatever the grain size: shift small grains.
-    x[kJetAxis<D>] -= 0.5 * (1.0 - diameters[i]);
-    p.add(id++, GrainKind::kFree, x, velocity, 0.5 * diameters[i],
-          grain_mass<D>(scene, GrainKind::kFree, diameters[i]));
+    x[kJetAxis<D>] -= 0.5 * (1.0 - diameter);
+    p.add(id, GrainKind::kFree, x, velocity, 0.5 * diameter,
+          grain_mass<D>(scene, GrainKind::kFree, diameter));
   }
   const double wall_mass = grain_mass<D>(scene, GrainKind::kWall, kTargetGrainDiameter);
   if (scene.wall.kind == WallKind::kPlate) return p;  // the plate replaces the target grains
+  auto id = static_cast<GrainId>(scene.jet.grains);
   for (const Vec<D>& x : wall)
     p.add(id++, GrainKind::kWall, x, Vec<D>::Zero(), 0.5 * kTargetGrainDiameter, wall_mass);
   return p;
+}
+
+// The share's grains of a state built whole (the binary scene's two, a gas).
+template <int D>
+Particles<D> share_of(Particles<D> whole, GrainShare share) {
+  if (share.parts == 1) return whole;
+  std::vector<std::uint32_t> keep;
+  const auto n = static_cast<std::int64_t>(whole.size());
+  for (std::int64_t i = 0; i < n; ++i)
+    if (share.holds(i, n)) keep.push_back(static_cast<std::uint32_t>(i));
+  whole.gather(keep);
+  return whole;
 }
 
 // Grain 1 approaches grain 2 (at rest at the origin) along +x with the given impact parameter.
@@ -300,15 +313,15 @@ GasLattice<D> gas_lattice(const GasSpec& gas) {
 // A switch without default: a new SceneKind without its builder is a compiler warning (-Wswitch),
 // not a jet built in its place.
 template <int D>
-Particles<D> build_initial_state(const Scene& scene) {
+Particles<D> build_initial_state(const Scene& scene, GrainShare share) {
   switch (scene.kind) {
     case SceneKind::kJet:
-      return build_jet<D>(scene);
+      return build_jet<D>(scene, share);
     case SceneKind::kBinary:
-      return build_binary<D>(scene);
+      return share_of(build_binary<D>(scene), share);
     case SceneKind::kGas:
     case SceneKind::kHcs:
-      return build_gas<D>(scene);
+      return share_of(build_gas<D>(scene), share);
   }
   throw std::logic_error("build_initial_state: a scene.kind without a builder");
 }
@@ -316,8 +329,8 @@ Particles<D> build_initial_state(const Scene& scene) {
 template GasLattice<2> gas_lattice<2>(const GasSpec&);
 template GasLattice<3> gas_lattice<3>(const GasSpec&);
 
-template Particles<2> build_initial_state<2>(const Scene&);
-template Particles<3> build_initial_state<3>(const Scene&);
+template Particles<2> build_initial_state<2>(const Scene&, GrainShare);
+template Particles<3> build_initial_state<3>(const Scene&, GrainShare);
 
 double jet_column_length(const Scene& scene) {
   const JetSpec& j = scene.jet;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/particles.hpp"
@@ -28,12 +29,25 @@ GasLattice<D> gas_lattice(const GasSpec& gas);
 extern template GasLattice<2> gas_lattice<2>(const GasSpec&);
 extern template GasLattice<3> gas_lattice<3>(const GasSpec&);
 
+// Which of a scene's grains one of `parts` MPI ranks builds, so that no rank holds the whole
+// run: of the jet's N grains (or the binary scene's, or a gas's) ids [N part / parts,
+// N (part + 1) / parts), and every target grain (the target is small, and each rank ties the
+// same springs from the whole of it). The grains come out the same as the whole state's.
+struct GrainShare {
+  int part = 0;
+  int parts = 1;
+  bool holds(std::int64_t index, std::int64_t of) const {
+    return index >= of * part / parts && index < of * (part + 1) / parts;
+  }
+};
+
 // The jet travels along -e_z (3D) or -e_x (2D) towards target grains centred in the plane
 // z = 0 (x = 0). Jet grains get ids 0..N-1, wall grains N.. . Tethered wall grains have mass
 // m, fixed ones infinite mass (inverse mass 0). Gas grains (ids 0..N-1 in lattice order) sit in
 // [0, box) with Maxwellian velocities of zero total momentum and exactly gas.temperature.
+// Grains come in id order.
 template <int D>
-Particles<D> build_initial_state(const Scene& scene);
+Particles<D> build_initial_state(const Scene& scene, GrainShare share = {});
 
 // A grain's mass, for the initial state and for anything that rebuilds grains from a file: jet
 // (and gas, binary) grains m = 1, or diameter^D with jet.mass_by_volume; target grains m = 1,
@@ -54,7 +68,7 @@ double jet_column_length(const Scene& scene);
 double target_grains_estimate(const Scene& scene);
 double gas_box_edge(const Scene& scene);
 
-extern template Particles<2> build_initial_state<2>(const Scene&);
-extern template Particles<3> build_initial_state<3>(const Scene&);
+extern template Particles<2> build_initial_state<2>(const Scene&, GrainShare);
+extern template Particles<3> build_initial_state<3>(const Scene&, GrainShare);
 
 }  // namespace granjet

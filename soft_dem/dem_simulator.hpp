@@ -42,6 +42,8 @@ namespace granjet::dem {
 template <int D, class Law, bool kMono = false, class Space = OpenSpace<D>>
 class DemSimulator final : public Simulator<D> {
  public:
+  // initial: the scene's grains in id order; over several ranks, this rank's share of them
+  // (build_initial_state's GrainShare: a part of the jet and the whole target).
   DemSimulator(const Scene& scene, Particles<D> initial, Space space = {}, RankTeam ranks = {});
 
   std::string_view backend() const override { return "soft_dem"; }
@@ -127,9 +129,11 @@ class DemSimulator final : public Simulator<D> {
     return in_whole_order<Value>(std::forward<Of>(value_of), Joined::kOnRank0);
   }
   EnergyBalance energy_over_ranks() const;
-  // Every rank holds all grains (the initial state, a checkpoint): each cuts the same parts
-  // and takes its own.
-  void own_share();
+  // At the start or a resume: the first cut of the parts, over the ranks, from the grains each
+  // rank starts with (mine: those it is to hand to their owners, each grain on one rank;
+  // whole_index: each grain's place in the order one rank would hold them). The first rebuild
+  // moves them to their owners.
+  void own_share(std::vector<std::uint8_t> mine, std::vector<std::uint64_t> whole_index);
   void checkpoint_over_ranks(StateArchive& a);
   // The tail of a checkpoint, on one rank or over ranks: the histories by grain ids, the
   // tethers, the clocks and counters.

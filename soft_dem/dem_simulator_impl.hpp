@@ -57,6 +57,9 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
   }
   GrainId max_id = 0;
   for (GrainId id : p_.id()) max_id = std::max(max_id, id);
+  if (!ranks.alone())  // ids below 2^53: exact as doubles
+    max_id =
+        static_cast<GrainId>(over_all_ranks(ranks, static_cast<double>(max_id), &RankTeam::max));
   index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
   if (!ranks.alone()) {
     if constexpr (Space::kPeriodic)
@@ -65,10 +68,22 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
                        "space (run it without mpirun; run.threads = N shares one machine)");
     double max_radius = 0.0;
     for (double r : p_.radius()) max_radius = std::max(max_radius, r);
+    max_radius = over_all_ranks(ranks, max_radius, &RankTeam::max);  // of all ranks' shares
     double reach = 2.0 * max_radius + scene.run.skin;
     if (tethered_) reach = std::max(reach, wall_.longest_bond() + scene.run.skin);
     domain_.emplace(ranks, reach);
-    own_share();
+    // Each rank holds the whole target (for its springs) and hands on only its share of it.
+    const GrainShare share{ranks.rank(), ranks.size()};
+    const auto walls =
+        static_cast<std::int64_t>(std::count(p_.kind().begin(), p_.kind().end(), GrainKind::kWall));
+    std::vector<std::uint8_t> mine(n, 1);
+    std::vector<std::uint64_t> whole_index(n);
+    std::int64_t wall = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (p_.kind()[i] == GrainKind::kWall) mine[i] = share.holds(wall++, walls);
+      whole_index[i] = static_cast<std::uint64_t>(p_.id()[i]);  // id order, as built
+    }
+    own_share(std::move(mine), std::move(whole_index));
   }
   rebuild();
   if (scene.run.integrator == IntegratorKind::kVelocityVerlet) {
@@ -711,7 +726,16 @@ void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   for (std::size_t c = 0; c < shear.size(); ++c)
     history.push_back({pair[2 * c], pair[2 * c + 1], shear[c]});
   if (tethered_) wall_.restore(a, "dem/tethers");
-  if (over_ranks()) own_share();
+  if (over_ranks()) {  // each rank read the whole checkpoint and hands on a share of it
+    const GrainShare share{domain_->rank(), domain_->ranks()};
+    std::vector<std::uint8_t> mine(n);
+    std::vector<std::uint64_t> whole_index(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      mine[i] = share.holds(static_cast<std::int64_t>(i), static_cast<std::int64_t>(n));
+      whole_index[i] = i;  // the order the checkpoint holds them in, one rank's
+    }
+    own_share(std::move(mine), std::move(whole_index));
+  }
   rebuild(std::move(history));
   step_ = a.integer("dem/step");
   first_step_ = a.integer("dem/first_step") != 0;
@@ -872,7 +896,7 @@ PeriodicBox<D> periodic_box(const Scene& scene) {
 // Open space (jets, binary collisions), mono- or bidisperse.
 template <int D, class Law>
 std::unique_ptr<Simulator<D>> make_jet_with_law(const Scene& scene, const RankTeam& ranks) {
-  Particles<D> initial = build_initial_state<D>(scene);
+  Particles<D> initial = build_initial_state<D>(scene, {ranks.rank(), ranks.size()});
   if (scene.monodisperse())
     return std::make_unique<DemSimulator<D, Law, true>>(scene, std::move(initial), OpenSpace<D>{},
                                                         ranks);

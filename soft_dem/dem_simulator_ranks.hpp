@@ -71,7 +71,7 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
       if (owned_[i]) mine += weight[i];
     const double scale = mine > 0.0 ? *work / mine : 1.0;
     for (std::size_t i = 0; i < n; ++i) weight[i] = owned_[i] ? scale * weight[i] : 0.0;
-    domain.partition(x, weight, owned_, false);
+    domain.partition(x, weight, owned_);
   }
 
   // Each owned grain that leaves goes to its owner and, as a ghost, to the other ranks within
@@ -351,16 +351,11 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy_over_ranks() const {
 }
 
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::own_share() {
-  const std::size_t n = p_.size();
-  std::vector<double> weight(n, 1.0);
-  owned_.assign(n, 1);
-  domain_->partition(p_.position(), weight, owned_, true);
-  whole_cell_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    owned_[i] = domain_->owner_of(p_.position()[i]) == domain_->rank();
-    whole_cell_[i] = i;  // the order they are held in now, the same on every rank
-  }
+void DemSimulator<D, Law, kMono, Space>::own_share(std::vector<std::uint8_t> mine,
+                                                   std::vector<std::uint64_t> whole_index) {
+  owned_ = std::move(mine);
+  whole_cell_ = std::move(whole_index);
+  domain_->partition(p_.position(), std::vector<double>(p_.size(), 1.0), owned_);
 }
 
 // Vectors as plain rows of doubles for the sums in whole order (ids too: exact below 2^53).

@@ -4,7 +4,9 @@
 // R_max + skin, or a tether bond) of its part. At every neighbour rebuild the grains move to
 // their owners and the ghosts are chosen anew; at every step each owner sends its ghosts'
 // state. The parts are cut anew, weighted by measured work, when the ranks' busy times grow
-// uneven.
+// uneven. No rank ever holds the whole run: each builds only its share of the initial grains
+// (core/initial_state.hpp's GrainShare), the first cut bisects over the ranks, and the first
+// rebuild moves the grains to their owners.
 //
 // Why the results are those of one rank, bit for bit: every rank bins its grains in the cells
 // of one frame, that of all grains (CellGrid::Frame), and within a cell orders them by id; so
@@ -75,11 +77,10 @@ class Domain {
   int ranks() const { return team_.size(); }
   double reach() const { return reach_; }
 
-  // Cuts the parts anew from the owned grains of every rank (`owned` flags; all true when every
-  // rank holds the same grains, as at the start) with their weights. Collective. A re-cut
-  // bisects over the ranks: no rank gathers the others' grains.
+  // Cuts the parts anew from the owned grains of every rank (`owned` flags) with their weights.
+  // Collective. The cut bisects over the ranks: no rank gathers the others' grains.
   void partition(std::span<const Vec<D>> x, std::span<const double> weight,
-                 std::span<const std::uint8_t> owned, bool everywhere_alike) {
+                 std::span<const std::uint8_t> owned) {
     std::vector<Vec<D>> mine_x;
     std::vector<double> mine_w;
     for (std::size_t i = 0; i < x.size(); ++i)
@@ -87,10 +88,7 @@ class Domain {
         mine_x.push_back(x[i]);
         mine_w.push_back(weight[i]);
       }
-    if (everywhere_alike)
-      parts_.emplace(mine_x, mine_w, ranks());
-    else
-      parts_.emplace(RecursiveBisection<D>::over_ranks(team_, mine_x, mine_w, ranks()));
+    parts_.emplace(RecursiveBisection<D>::over_ranks(team_, mine_x, mine_w, ranks()));
   }
   bool partitioned() const { return parts_.has_value(); }
   int owner_of(const Vec<D>& x) const { return parts_->part_of(x); }

@@ -358,5 +358,64 @@ TEST(InitialState, SameSeedSameJetOtherSeedOther) {
   EXPECT_FALSE(std::equal(a.position().begin(), a.position().end(), c.position().begin()));
 }
 
+// The shares of `parts` ranks hold the whole state's jet grains once each, bit for bit, and the
+// whole target each; a share's jet grains are a run of ids.
+template <int D>
+void expect_shares_make_the_whole(const Scene& s, int parts) {
+  const Particles<D> whole = build_initial_state<D>(s);
+  std::map<GrainId, int> held;
+  for (int part = 0; part < parts; ++part) {
+    const Particles<D> share = build_initial_state<D>(s, {part, parts});
+    std::int64_t jet = 0;
+    for (std::size_t k = 0; k < share.size(); ++k) {
+      const GrainId id = share.id()[k];
+      const auto i = static_cast<std::size_t>(id);  // the whole state's grains are in id order
+      ASSERT_EQ(whole.id()[i], id);
+      EXPECT_EQ(share.kind()[k], whole.kind()[i]);
+      EXPECT_EQ(share.position()[k], whole.position()[i]) << "grain " << id;
+      EXPECT_EQ(share.velocity()[k], whole.velocity()[i]);
+      EXPECT_EQ(share.radius()[k], whole.radius()[i]);
+      EXPECT_EQ(share.mass()[k], whole.mass()[i]);
+      if (share.kind()[k] == GrainKind::kFree) {
+        EXPECT_EQ(id, s.jet.grains * part / parts + jet++);
+        ++held[id];
+      }
+    }
+    EXPECT_EQ(jet, s.jet.grains * (part + 1) / parts - s.jet.grains * part / parts);
+    EXPECT_EQ(count(share, GrainKind::kWall), count(whole, GrainKind::kWall));
+  }
+  EXPECT_EQ(static_cast<std::int64_t>(held.size()), count(whole, GrainKind::kFree));
+  for (const auto& [id, times] : held) EXPECT_EQ(times, 1) << "grain " << id;
+}
+
+TEST(InitialState, SharesOverRanksMakeTheWholeJet) {
+  Scene s;
+  s.jet.grains = 1000;
+  expect_shares_make_the_whole<3>(s, 3);
+  s.jet.dispersity = Dispersity::kBi;
+  expect_shares_make_the_whole<3>(s, 4);
+  s.dimension = 2;
+  s.jet.diameter = 30;
+  s.jet.spacing = 1.1;
+  s.wall.diameter = 66;
+  expect_shares_make_the_whole<2>(s, 5);
+  s.wall.kind = WallKind::kPlate;
+  expect_shares_make_the_whole<2>(s, 2);
+}
+
+TEST(InitialState, SharesOfTheBinarySceneSplitItsTwoGrains) {
+  Scene s;
+  s.kind = SceneKind::kBinary;
+  const Particles<3> whole = build_initial_state<3>(s);
+  const Particles<3> first = build_initial_state<3>(s, {0, 2});
+  const Particles<3> second = build_initial_state<3>(s, {1, 2});
+  ASSERT_EQ(first.size(), 1u);
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_EQ(first.id()[0], 0);
+  EXPECT_EQ(second.id()[0], 1);
+  EXPECT_EQ(first.position()[0], whole.position()[0]);
+  EXPECT_EQ(second.velocity()[0], whole.velocity()[1]);
+}
+
 }  // namespace
 }  // namespace granjet
