@@ -315,10 +315,12 @@ double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
   if (!quiet_.fresh()) {
     const auto radius = p_.radius();
-    quiet_.classify(p_, force_prev_, pairs_, pair_row_, space_, dt_,
-                    [&](std::uint32_t i, std::uint32_t j) {
-                      return radius_of(radius, i) + radius_of(radius, j);
-                    });
+    quiet_.classify(
+        p_, force_prev_, pairs_, pair_row_, space_, dt_,
+        [&](std::uint32_t i, std::uint32_t j) {
+          return radius_of(radius, i) + radius_of(radius, j);
+        },
+        over_ranks() ? std::span<const std::uint8_t>(owned_) : std::span<const std::uint8_t>());
   }
   const auto tether_forces = [&] {
     std::optional<PhaseProfile::Timer> tethering;

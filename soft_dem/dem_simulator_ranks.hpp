@@ -207,12 +207,9 @@ template <int D, class Law, bool kMono, class Space>
 double DemSimulator<D, Law, kMono, Space>::agree(double own_largest_speed2) {
   const PhaseProfile::Timer timing = timer(phase_.agree);
   const Domain<D>& domain = *domain_;
-  // A ghost trusted quiet here that its owner's pass pushed (bit 1 after the ageing) ends this
-  // rank's classification as a trusted grain of its own would.
-  bool pushed = trusted_pushed_;
-  if (quiet_.fresh())
-    for (const std::vector<std::uint32_t>& from : domain.ghosts_from())
-      for (std::uint32_t i : from) pushed = pushed || (quiet_.trusted(i) && (forced_[i] & 2));
+  // A trusted grain pushed on any rank ends every rank's classification (ghosts are never
+  // trusted: their owners watch them).
+  const bool pushed = trusted_pushed_;
   // A NaN speed becomes infinite: a maximum over ranks keeps it, and the rebuild reports it.
   std::vector<double> agreed{std::isnan(own_largest_speed2) ? INFINITY : own_largest_speed2,
                              pushed ? 1.0 : 0.0, error_ ? 1.0 : 0.0,

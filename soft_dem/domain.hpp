@@ -160,9 +160,6 @@ class Domain {
         unpack(recv_index_[r][k], &inbox_[r][k * width]);
   }
 
-  // The local indices of the ghosts, by the rank that owns them.
-  const std::vector<std::vector<std::uint32_t>>& ghosts_from() const { return recv_index_; }
-
  private:
   RankTeam team_;
   double reach_;

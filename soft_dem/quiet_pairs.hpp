@@ -50,8 +50,6 @@ class QuietPairs {
   std::span<const std::uint32_t> tested() const { return {tested_.data(), tested_count_}; }
   // Whether the classification still holds for the next pass.
   bool fresh() const { return age_ < kMaxAge; }
-  // Whether grain i is trusted quiet by the classification in force (fresh() only).
-  bool trusted(std::size_t i) const { return trusted_[i] != 0; }
   // After a neighbour rebuild: the list it classified is gone, and with it the pairs to test.
   void expire() {
     age_ = kMaxAge;
@@ -61,13 +59,15 @@ class QuietPairs {
   // Classifies the pairs of `pairs` (rows pair_row) at the start of a pass. force_before: each
   // grain's force at the last pass (a grain with none moves this pass as if it coasted, whatever
   // its forced bits say); reach(i, j): the sum of the radii; step: the time step (a coasting
-  // grain moves by step times its velocity). The threads share every sweep; the pairs to test
-  // come out the same for any thread count whenever a majority velocity exists (and are
-  // always the pairs that can touch).
+  // grain moves by step times its velocity); owned: over MPI ranks, the grains held here that
+  // are not ghosts, the only ones trusted (a ghost's partners beyond the halo are not listed
+  // here, so no margin around it can be known; empty: every grain may be). The threads share
+  // every sweep; the pairs to test come out the same for any thread count whenever a majority
+  // velocity exists (and are always the pairs that can touch).
   template <class Space, class Reach>
   void classify(const Particles<D>& p, std::span<const Vec<D>> force_before, const PairList& pairs,
                 std::span<const std::uint32_t> pair_row, const Space& space, double step,
-                Reach&& reach) {
+                Reach&& reach, std::span<const std::uint8_t> owned = {}) {
     const auto n = static_cast<std::int64_t>(p.size());
     const auto listed = static_cast<std::int64_t>(pairs.size());
     const Vec<D>* x = p.position().data();
@@ -136,7 +136,7 @@ class QuietPairs {
       }
 #pragma omp for schedule(static) reduction(+ : quiet) reduction(max : largest)
       for (std::int64_t i = 0; i < n; ++i) {
-        trusted_[i] = coasts(i) && v[i] == shared;
+        trusted_[i] = coasts(i) && v[i] == shared && (owned.empty() || owned[i] != 0);
         quiet += trusted_[i];
         largest = std::max(largest, x[i].cwiseAbs().maxCoeff());
       }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include "core/space.hpp"
@@ -29,9 +30,10 @@ struct Row {
     force_before.assign(p.size(), Vec<3>::Zero());
   }
 
-  void classify() {
-    quiet.classify(p, force_before, pairs, pair_row, OpenSpace<3>{}, 0.002,
-                   [](std::uint32_t, std::uint32_t) { return 1.0; });
+  void classify(std::span<const std::uint8_t> owned = {}) {
+    quiet.classify(
+        p, force_before, pairs, pair_row, OpenSpace<3>{}, 0.002,
+        [](std::uint32_t, std::uint32_t) { return 1.0; }, owned);
   }
   // The grains (ids) of the tested pairs.
   std::vector<std::pair<GrainId, GrainId>> tested() const {
@@ -64,6 +66,18 @@ TEST(QuietPairs, TestsAQuietPairWithinTheDriftOfContact) {
   Row row(20, 1e-15);
   row.classify();
   EXPECT_EQ(row.tested().size(), 19u);
+}
+
+// Over MPI ranks a ghost is never trusted, however quiet: its partners beyond the halo are
+// not listed on this rank, so the margin around it cannot be known.
+TEST(QuietPairs, AGhostIsNotTrustedNorAreTheGrainsWithinTheMarginOfIt) {
+  Row row(20);
+  std::vector<std::uint8_t> owned(row.p.size(), 1);
+  for (std::size_t i = 0; i < row.p.size(); ++i)
+    if (row.p.id()[i] == 19) owned[i] = 0;  // the far end of the row is another rank's
+  row.classify(owned);
+  EXPECT_EQ(row.tested(),
+            (Pairs{{0, 1}, {1, 2}, {2, 3}, {3, 4}, {15, 16}, {16, 17}, {17, 18}, {18, 19}}));
 }
 
 TEST(QuietPairs, AGrainPushedAtTheLastPassIsNotQuiet) {
