@@ -19,7 +19,10 @@ constexpr const char* kParameters = "/parameters/granjet";
 constexpr const char* kScene = "/parameters/granjet/scene";
 constexpr const char* kRequestedScene = "/parameters/granjet/requested_scene";
 constexpr const char* kMembers = "/parameters/granjet/members";
-constexpr const char* kCheckpointTime = "/checkpoint/app/time";  // run_command's checkpoints
+// The checkpoint, and the one that replaces it (H5mdFile::write_checkpoint).
+constexpr const char* kCheckpoint = "/checkpoint";
+constexpr const char* kFreshCheckpoint = "/checkpoint.new";
+constexpr const char* kCheckpointTime = "/app/time";  // below them: run_command's checkpoints
 constexpr const char* kFrameStep = "/particles/all/position/step";
 constexpr const char* kFrameTime = "/particles/all/position/time";
 constexpr const char* kFrameGrains = "/observables/frame_grains/value";
@@ -85,14 +88,14 @@ class H5mdInput {
     }
   }
 
-  // Every dataset under /checkpoint, by its path below it.
-  StateArchive checkpoint() const {
+  // Every dataset under `group_name` (a checkpoint), by its path below it.
+  StateArchive checkpoint(const std::string& group_name) const {
     struct Visit {
       const H5mdInput* in;
       std::vector<std::string> names;
     } visit{this, {}};
-    const H5Handle group = ctx_.own(H5Gopen2(file_.get(), "/checkpoint", H5P_DEFAULT), H5Gclose,
-                                    "open", "/checkpoint");
+    const H5Handle group = ctx_.own(H5Gopen2(file_.get(), group_name.c_str(), H5P_DEFAULT),
+                                    H5Gclose, "open", group_name);
     ctx_.check(H5Ovisit(
                    group.get(), H5_INDEX_NAME, H5_ITER_INC,
                    [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
@@ -101,10 +104,10 @@ class H5mdInput {
                      return 0;
                    },
                    &visit),
-               "list", "/checkpoint");
+               "list", group_name);
     StateArchive archive;
     for (const std::string& name : visit.names) {
-      const std::string path = "/checkpoint/" + name;
+      const std::string path = group_name + "/" + name;
       const H5Handle set =
           ctx_.own(H5Dopen2(file_.get(), path.c_str(), H5P_DEFAULT), H5Dclose, "open", path);
       const H5Handle type = ctx_.own(H5Dget_type(set.get()), H5Tclose, "query", path);
@@ -221,9 +224,17 @@ FileSummary read_summary(const std::filesystem::path& file) {
                                         "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
   if (in.exists(kRequestedScene)) summary.requested_scene_ini = in.string_dataset(kRequestedScene);
-  if (in.exists(kCheckpointTime)) {
+  // As read_checkpoint reads it: /checkpoint, or a fresh one where a kill left none readable.
+  for (const char* checkpoint : {kCheckpoint, kFreshCheckpoint}) {
+    const std::string time = std::string(checkpoint) + kCheckpointTime;
+    try {
+      if (!in.exists(time)) continue;
+      summary.checkpoint_time = in.element<double>(time.c_str(), 0);
+    } catch (const std::exception&) {
+      continue;
+    }
     summary.checkpoint = true;
-    summary.checkpoint_time = in.element<double>(kCheckpointTime, 0);
+    break;
   }
   if (in.exists(kMembers)) {
     std::istringstream lines(in.string_dataset(kMembers));
@@ -241,13 +252,23 @@ FileSummary read_summary(const std::filesystem::path& file) {
   return summary;
 }
 
-StateArchive read_checkpoint(const std::filesystem::path& file) {
+StateArchive read_checkpoint(const std::filesystem::path& file, bool* from_fresh) {
   const H5mdInput in(file);
-  if (!in.exists("/checkpoint"))
+  const bool fresh = in.exists(kFreshCheckpoint);
+  if (from_fresh != nullptr) *from_fresh = false;
+  if (in.exists(kCheckpoint)) {
+    try {
+      return in.checkpoint(kCheckpoint);
+    } catch (const std::exception&) {  // its space reused before the kill: the fresh one holds
+      if (!fresh) throw;
+    }
+  } else if (!fresh) {
     throw InputError(file.string(),
                      "holds no checkpoint (a run older than its first "
                      "run.checkpoint_interval, or not a granjet run)");
-  return in.checkpoint();
+  }
+  if (from_fresh != nullptr) *from_fresh = true;
+  return in.checkpoint(kFreshCheckpoint);
 }
 
 // A damaged or foreign file must not reach the analysis: it indexes by id and divides by radii.

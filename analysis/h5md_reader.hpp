@@ -36,8 +36,10 @@ struct FileSummary {
 // Throws std::runtime_error naming the file if it is not a granjet H5MD file.
 FileSummary read_summary(const std::filesystem::path& file);
 // The run state stored by the last checkpoint (H5mdWriter::write_checkpoint). Throws
-// InputError naming the file when it has none.
-StateArchive read_checkpoint(const std::filesystem::path& file);
+// InputError naming the file when it has none. A run killed while it replaced its checkpoint
+// may hold no readable /checkpoint beside a complete /checkpoint.new: that one is read then
+// (*from_fresh says so, where given).
+StateArchive read_checkpoint(const std::filesystem::path& file, bool* from_fresh = nullptr);
 
 // One stored frame, only its valid grains, sorted by id.
 template <int D>

@@ -84,6 +84,8 @@ class H5mdFile {
 
  private:
   void drop_checkpoints();
+  // /checkpoint.new, complete and flushed, becomes /checkpoint.
+  void promote_fresh_checkpoint();
   // An extendable dataset; extent is its current shape [rows, row shape...].
   struct Dataset {
     H5Handle handle;
@@ -341,9 +343,13 @@ void H5mdFile::write_string_dataset(const char* name, const std::string& value) 
 H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
     : path_(std::move(path)), ctx_(partial_path(path_)), dimension_(dimension) {
   lock_.emplace(ctx_.file());
-  const StateArchive checkpoint = read_checkpoint(ctx_.file());  // before it is opened to write
+  bool from_fresh = false;  // read before the file is opened to write
+  const StateArchive checkpoint = read_checkpoint(ctx_.file(), &from_fresh);
   file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
                    "the HDF5 file");
+  // Killed while it replaced its checkpoint: the replacement is finished before anything else,
+  // or the next checkpoint would begin by deleting the only one left.
+  if (from_fresh) promote_fresh_checkpoint();
   link_props_ = ctx_.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
   ctx_.check(H5Pset_create_intermediate_group(link_props_.get(), 1), "set", "link properties");
   const std::string all = "/particles/all/", obs = "/observables/";
@@ -450,9 +456,11 @@ void H5mdFile::truncate(Dataset& set, hsize_t rows) {
   ctx_.check(H5Dset_extent(set.handle.get(), set.extent.data()), "truncate", set.name);
 }
 
-// /checkpoint.new takes every entry, then replaces /checkpoint: a run killed while it is
-// written keeps the last complete one. It counts the frames and observables written so far, so
-// that a resume drops those written after it.
+// /checkpoint.new takes every entry and is flushed, then replaces /checkpoint: a run killed
+// while it is written keeps the last complete one, and a run killed while it replaces it keeps
+// the new one whole (HDF5 may reuse the old one's space at once; read_checkpoint falls back).
+// It counts the frames and observables written so far, so that a resume drops those written
+// after it.
 void H5mdFile::write_checkpoint(StateArchive archive) {
   require_open();
   archive.put("writer/frames", static_cast<std::int64_t>(sets_.frame_step.extent[0]));
@@ -473,11 +481,16 @@ void H5mdFile::write_checkpoint(StateArchive archive) {
     store(name, H5T_NATIVE_DOUBLE, values.size(), values.data());
   for (const auto& [name, values] : archive.all_integers())
     store(name, H5T_NATIVE_INT64, values.size(), values.data());
+  ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
+  promote_fresh_checkpoint();
+}
+
+void H5mdFile::promote_fresh_checkpoint() {
   if (H5Lexists(file_.get(), "/checkpoint", H5P_DEFAULT) > 0)
     ctx_.check(H5Ldelete(file_.get(), "/checkpoint", H5P_DEFAULT), "replace", "/checkpoint");
   ctx_.check(
-      H5Lmove(file_.get(), fresh.c_str(), file_.get(), "/checkpoint", H5P_DEFAULT, H5P_DEFAULT),
-      "rename", fresh);
+      H5Lmove(file_.get(), "/checkpoint.new", file_.get(), "/checkpoint", H5P_DEFAULT, H5P_DEFAULT),
+      "rename", "/checkpoint.new");
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
 }
 

@@ -2,6 +2,7 @@
 // the straight run's frames, observables, fields, analysis and summary (minus timings), bit for
 // bit; a resume may extend run.t_end and nothing that would make it another run.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -139,6 +140,41 @@ TEST_F(Resume, KilledRunResumedIsBitIdenticalOnBothBackends) {
     EXPECT_NE(resumed, std::string::npos) << log;
     EXPECT_NE(log.find("continuing ", resumed), std::string::npos) << log;
   }
+}
+
+// Killed while it replaced its checkpoint: the old /checkpoint gone (or its space reused), the
+// complete /checkpoint.new not yet renamed. The resume reads the fresh one, finishes the
+// replacement before its own checkpoints, and gives the straight run.
+TEST_F(Resume, KilledWhileReplacingItsCheckpointResumesFromTheFreshOne) {
+  const std::string base = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=3000 --set run.t_end=20"
+                           " --set run.checkpoint_interval=2 --set output.interval=1"
+                           " --set analysis.window_start=5 --set analysis.window_end=20";
+  const auto paths = [&](const std::string& name) {
+    return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
+           (dir_ / (name + ".json")).string();
+  };
+  ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
+  const fs::path partial = dir_ / "killed.h5.partial";
+  ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 6.0));
+  const double at = analysis::read_summary(partial).checkpoint_time;
+  {
+    const hid_t file = H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_GE(H5Lmove(file, "/checkpoint", file, "/checkpoint.new", H5P_DEFAULT, H5P_DEFAULT), 0);
+    H5Fclose(file);
+  }
+  const analysis::FileSummary left = analysis::read_summary(partial);
+  EXPECT_TRUE(left.checkpoint);
+  EXPECT_EQ(left.checkpoint_time, at);
+  bool from_fresh = false;
+  EXPECT_NO_THROW(analysis::read_checkpoint(partial, &from_fresh));
+  EXPECT_TRUE(from_fresh);
+  ASSERT_EQ(granjet("resume " + partial.string() + " --quiet --summary " +
+                    (dir_ / "killed.json").string()),
+            0)
+      << err_;
+  expect_same_run("straight", "killed");
 }
 
 // SIGINT, SIGTERM, SIGHUP: the run stops after its step, writes a checkpoint, keeps its
