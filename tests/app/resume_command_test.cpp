@@ -64,6 +64,12 @@ class Resume : public testing::CommandTest {
     return status != -1 && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
   }
 
+  // The output and summary options of a run named `name` in the test's directory.
+  std::string paths(const std::string& name) const {
+    return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
+           (dir_ / (name + ".json")).string();
+  }
+
   static std::string bytes_of(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
@@ -107,10 +113,6 @@ TEST_F(Resume, KilledRunResumedIsBitIdenticalOnBothBackends) {
                              c.sets + " --set run.checkpoint_interval=2 --set output.interval=1";
     const std::string straight = std::string("straight_") + c.backend;
     const std::string killed = std::string("killed_") + c.backend;
-    const auto paths = [&](const std::string& name) {
-      return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
-             (dir_ / (name + ".json")).string();
-    };
     ASSERT_EQ(granjet(base + paths(straight)), 0) << err_;
     const fs::path partial = dir_ / (killed + ".h5.partial");
     ASSERT_TRUE(run_and_kill(base + paths(killed), partial, c.kill_after))
@@ -150,10 +152,6 @@ TEST_F(Resume, KilledWhileReplacingItsCheckpointResumesFromTheFreshOne) {
                            " --quiet --set jet.grains=3000 --set run.t_end=20"
                            " --set run.checkpoint_interval=2 --set output.interval=1"
                            " --set analysis.window_start=5 --set analysis.window_end=20";
-  const auto paths = [&](const std::string& name) {
-    return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
-           (dir_ / (name + ".json")).string();
-  };
   ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
   const fs::path partial = dir_ / "killed.h5.partial";
   ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 6.0));
@@ -240,10 +238,6 @@ TEST_F(Resume, KilledRunResumesOverTwoRanks) {
                            " --set analysis.window_end=12 --set run.checkpoint_interval=2"
                            " --set output.interval=1"
                            " --set output.fields=position,velocity,radius,id,omega,force,contacts";
-  const auto paths = [&](const std::string& name) {
-    return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
-           (dir_ / (name + ".json")).string();
-  };
   ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
   const fs::path partial = dir_ / "killed.h5.partial";
   ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 4.0))
