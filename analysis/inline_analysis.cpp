@@ -10,7 +10,10 @@ namespace granjet::analysis {
 template <int D>
 InlineAnalysis<D>::InlineAnalysis(const Scene& scene, Simulator<D>& sim)
     : analysis_(AnalysisConfig::for_scene(scene)), half_step_(0.5 * scene.dt()) {
-  sim.record_transfers(true);  // the event-driven backend keeps impulses only when asked
+  // The event-driven backend keeps impulses only when asked: from the start, so that a run
+  // resumed inside the window counts them from its checkpoint (observe() turns this off
+  // outside the window).
+  sim.record_transfers(true);
 }
 
 template <int D>
@@ -22,10 +25,13 @@ template <int D>
 void InlineAnalysis<D>::observe(Simulator<D>& sim) {
   if (!analysis_.due(sim.time())) return;
   const auto start = std::chrono::steady_clock::now();
-  // Every sample collects, inside the window or not, so the transfers always cover exactly the
-  // time since the previous sample.
+  // Only the window's samples use transfers, each those since the previous sample: the window's
+  // first sample starts the count, and outside the window none is gathered (over ranks, every
+  // contact to rank 0) nor recorded (the event-driven backend's every impulse).
+  const bool counted = analysis_.in_window(sim.time());
+  sim.record_transfers(counted);
   transfers_.clear();
-  sim.collect_transfers(transfers_);
+  if (counted) sim.collect_transfers(transfers_);
   analysis_.sample(sim.time(), sim.particles(), transfers_);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -6,8 +6,8 @@
 //   while (running) {
 //     sim.advance_to(std::min(analysis.next_sample_time(), ...other stops...));
 //     if (analysis.due(sim.time())) {
-//       transfers.clear();
-//       sim.collect_transfers(transfers);  // at every sample, so the ED buffer stays small
+//       transfers.clear();  // those since the previous sample, used inside the window only
+//       if (analysis.in_window(sim.time())) sim.collect_transfers(transfers);
 //       analysis.sample(sim.time(), sim.particles(), transfers);
 //     }
 //   }
