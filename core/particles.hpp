@@ -37,6 +37,19 @@ class Particles {
     inv_mass_.push_back(mass == std::numeric_limits<double>::infinity() ? 0.0 : 1.0 / mass);
   }
 
+  // Drops every grain but keeps the arrays' memory: a store filled again and again (the whole
+  // a domain decomposition gathers at each sample) then appends without reallocating.
+  void clear() {
+    id_.clear();
+    kind_.clear();
+    pos_.clear();
+    vel_.clear();
+    omega_.clear();
+    radius_.clear();
+    mass_.clear();
+    inv_mass_.clear();
+  }
+
   std::size_t size() const { return id_.size(); }
   bool empty() const { return id_.empty(); }
 

@@ -45,20 +45,29 @@ class RankTeam {
   }
   bool any(bool value) const;
 
-  // Every rank's values, joined in rank order, on every rank.
+  // Every rank's values, joined in rank order, on every rank: into `joined`, whose memory is
+  // kept from call to call, or into a new list.
+  template <class T>
+  void all_gather_into(std::span<const T> mine, std::vector<T>& joined) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    all_gather_bytes(std::as_bytes(mine), [&](std::size_t bytes) { return room(joined, bytes); });
+  }
   template <class T>
   std::vector<T> all_gather(std::span<const T> mine) const {
-    static_assert(std::is_trivially_copyable_v<T>);
     std::vector<T> joined;
-    all_gather_bytes(std::as_bytes(mine), [&](std::size_t bytes) { return room(joined, bytes); });
+    all_gather_into(mine, joined);
     return joined;
   }
-  // Every rank's values, joined in rank order, on rank 0 (empty elsewhere).
+  // Every rank's values, joined in rank order, on rank 0 (empty elsewhere): the same two ways.
+  template <class T>
+  void gather_into(std::span<const T> mine, std::vector<T>& joined) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    gather_bytes(std::as_bytes(mine), [&](std::size_t bytes) { return room(joined, bytes); });
+  }
   template <class T>
   std::vector<T> gather(std::span<const T> mine) const {
-    static_assert(std::is_trivially_copyable_v<T>);
     std::vector<T> joined;
-    gather_bytes(std::as_bytes(mine), [&](std::size_t bytes) { return room(joined, bytes); });
+    gather_into(mine, joined);
     return joined;
   }
   // Rank 0's values, on every rank.

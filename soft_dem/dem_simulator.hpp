@@ -121,9 +121,17 @@ class DemSimulator final : public Simulator<D> {
   // Per-grain values of this rank's own grains, joined over all ranks in the order one rank
   // holds the grains (by the cell of the last rebuild, then id): on every rank, or only on rank
   // 0 (empty elsewhere) for what only the run's output reads.
+  // for_each_in_whole_order hands them to visit(value) one by one, with no list of them built.
   enum class Joined : std::uint8_t { kOnEveryRank, kOnRank0 };
+  template <class Value, class Of, class Visit>
+  void for_each_in_whole_order(Of&& value_of, Visit&& visit, Joined where) const;
   template <class Value, class Of>
-  std::vector<Value> in_whole_order(Of&& value_of, Joined where = Joined::kOnEveryRank) const;
+  std::vector<Value> in_whole_order(Of&& value_of, Joined where = Joined::kOnEveryRank) const {
+    std::vector<Value> out;
+    for_each_in_whole_order<Value>(
+        std::forward<Of>(value_of), [&](const Value& v) { out.push_back(v); }, where);
+    return out;
+  }
   template <class Value, class Of>
   std::vector<Value> in_whole_order_on_rank0(Of&& value_of) const {
     return in_whole_order<Value>(std::forward<Of>(value_of), Joined::kOnRank0);

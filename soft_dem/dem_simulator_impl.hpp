@@ -827,17 +827,20 @@ const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles() const {
       GrainKind kind;
       double x[D], v[D], w[kSpinWidth<D>], radius, mass;
     };
-    whole_ = Particles<D>();
-    for (const Grain& g : in_whole_order_on_rank0<Grain>([&](std::size_t i, auto emit) {
-           Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
-           put<D>(g.x, p_.position()[i]);
-           put<D>(g.v, p_.velocity()[i]);
-           put<D>(g.w, p_.spin()[i]);
-           emit(g);
-         })) {
-      whole_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
-      whole_.spin().back() = get<D, Spin<D>>(g.w);
-    }
+    whole_.clear();  // its memory stays: each sample refills it
+    for_each_in_whole_order<Grain>(
+        [&](std::size_t i, auto emit) {
+          Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
+          put<D>(g.x, p_.position()[i]);
+          put<D>(g.v, p_.velocity()[i]);
+          put<D>(g.w, p_.spin()[i]);
+          emit(g);
+        },
+        [&](const Grain& g) {
+          whole_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
+          whole_.spin().back() = get<D, Spin<D>>(g.w);
+        },
+        Joined::kOnRank0);
     whole_fresh_ = true;
   }
   return whole_;

@@ -259,16 +259,19 @@ void DemSimulator<D, Law, kMono, Space>::raise_together(
 }
 
 template <int D, class Law, bool kMono, class Space>
-template <class Value, class Of>
-std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value_of,
-                                                                      Joined where) const {
+template <class Value, class Of, class Visit>
+void DemSimulator<D, Law, kMono, Space>::for_each_in_whole_order(Of&& value_of, Visit&& visit,
+                                                                 Joined where) const {
   struct Keyed {
     std::uint64_t cell;
     GrainId id;
     std::uint32_t nth;  // of the grain's values
     Value value;
   };
-  std::vector<Keyed> mine;
+  // Kept from call to call: a sample's gather of every grain then writes into the memory the
+  // last one used, where fresh pages would cost more than the copy itself.
+  static thread_local std::vector<Keyed> mine, all;
+  mine.clear();
   for (std::size_t i = 0; i < p_.size(); ++i) {
     if (!owned_[i]) continue;
     std::uint32_t nth = 0;
@@ -276,17 +279,15 @@ std::vector<Value> DemSimulator<D, Law, kMono, Space>::in_whole_order(Of&& value
   }
   // Each rank's values come in the whole order: merging its run with the others' sorts them.
   const RankTeam& team = domain_->team();
-  const std::vector<Keyed> all = where == Joined::kOnEveryRank
-                                     ? team.template all_gather<Keyed>(mine)
-                                     : team.template gather<Keyed>(mine);
-  std::vector<Value> out;
-  out.reserve(all.size());
+  if (where == Joined::kOnEveryRank)
+    team.template all_gather_into<Keyed>(mine, all);
+  else
+    team.template gather_into<Keyed>(mine, all);
   for (std::uint32_t k : merged_run_order(all.size(), [&](std::size_t a, std::size_t b) {
          return std::tie(all[a].cell, all[a].id, all[a].nth) <
                 std::tie(all[b].cell, all[b].id, all[b].nth);
        }))
-    out.push_back(all[k].value);
-  return out;
+    visit(all[k].value);
 }
 
 // energy() over ranks: each sum in the order one rank makes it, the same on every rank.
@@ -296,16 +297,19 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy_over_ranks() const {
   struct Motion {
     double kinetic, rotational;
   };
-  for (const Motion& m : in_whole_order<Motion>([&](std::size_t i, auto emit) {
-         if (p_.inverse_mass()[i] == 0.0) return;
-         double rotational = 0.0;
-         if constexpr (kRotation)
-           rotational = 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
-         emit({0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm(), rotational});
-       })) {
-    e.kinetic += m.kinetic;
-    if constexpr (kRotation) e.rotational += m.rotational;
-  }
+  for_each_in_whole_order<Motion>(
+      [&](std::size_t i, auto emit) {
+        if (p_.inverse_mass()[i] == 0.0) return;
+        double rotational = 0.0;
+        if constexpr (kRotation)
+          rotational = 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+        emit({0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm(), rotational});
+      },
+      [&](const Motion& m) {
+        e.kinetic += m.kinetic;
+        if constexpr (kRotation) e.rotational += m.rotational;
+      },
+      Joined::kOnEveryRank);
   for (double elastic : in_whole_order<double>([&](std::size_t i, auto emit) {
          for_each_contact_of(
              i,

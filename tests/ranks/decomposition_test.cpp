@@ -186,6 +186,34 @@ TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
   }
 }
 
+// A gather into a list kept from call to call (its memory reused) leaves in it only this
+// call's values, in rank order, whether the list held more before or fewer.
+TEST(Ranks, GatherIntoAKeptListHoldsOnlyThisCallsValues) {
+  const RankTeam world = RankTeam::world();
+  std::vector<std::int64_t> on_rank0(1000, -1), everywhere(1000, -1);
+  for (int round : {1, 2, 3}) {
+    // Rank r sends round * (r + 1) values r * 100 + k.
+    std::vector<std::int64_t> mine, expected;
+    for (int r = 0; r < world.size(); ++r)
+      for (int k = 0; k < round * (r + 1); ++k) {
+        if (r == world.rank()) mine.push_back(100 * r + k);
+        expected.push_back(100 * r + k);
+      }
+    if (round == 3) {  // fewer than the last round
+      mine.resize(1);
+      expected.clear();
+      for (int r = 0; r < world.size(); ++r) expected.push_back(100 * r);
+    }
+    world.gather_into<std::int64_t>(mine, on_rank0);
+    world.all_gather_into<std::int64_t>(mine, everywhere);
+    EXPECT_EQ(everywhere, expected) << "round " << round;
+    if (world.rank() == 0)
+      EXPECT_EQ(on_rank0, expected) << "round " << round;
+    else
+      EXPECT_TRUE(on_rank0.empty()) << "round " << round << ": rank " << world.rank();
+  }
+}
+
 // The bisection over ranks, of points dealt out to the ranks in turn, gives the regions that
 // one process cuts from all the points: its sums are exact integers, whatever the split.
 TEST(Ranks, BisectionOverRanksIsTheSameForAnySplitOfThePoints) {
