@@ -440,31 +440,34 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
     put_row<D, N>(row, 2 + 2 * D, impulse);
     return row;
   };
-  const auto take = [&](const std::vector<Row<N>>& rows) {
-    for (const Row<N>& r : rows)
-      out.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 2),
-                     get_row<D, N>(r, 2 + D), get_row<D, N>(r, 2 + 2 * D)});
+  const auto take = [&](const Row<N>& r) {
+    out.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 2),
+                   get_row<D, N>(r, 2 + D), get_row<D, N>(r, 2 + 2 * D)});
   };
-  take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
-    for_each_contact_of(
-        i,
-        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-          Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
-          const Vec<D> f = law_.force(g, v_rel, shear);
-          emit(row_of(id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f));
-        },
-        [](std::uint32_t) {});
-  }));
+  for_each_in_whole_order<Row<N>>(
+      [&](std::size_t i, auto emit) {
+        for_each_contact_of(
+            i,
+            [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+              Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
+              const Vec<D> f = law_.force(g, v_rel, shear);
+              emit(row_of(id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f));
+            },
+            [](std::uint32_t) {});
+      },
+      take, Joined::kOnRank0);
   if (plate_)
-    take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
-      plate_->contact(
-          x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
-          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-            const Vec<D> f = plate_->force(i, g, v_rel);
-            emit(row_of(id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f));
-          },
-          [] {});
-    }));
+    for_each_in_whole_order<Row<N>>(
+        [&](std::size_t i, auto emit) {
+          plate_->contact(
+              x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+              [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+                const Vec<D> f = plate_->force(i, g, v_rel);
+                emit(row_of(id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f));
+              },
+              [] {});
+        },
+        take, Joined::kOnRank0);
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -479,10 +482,9 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
     put_row<D, N>(row, 3 + D, f - normal);
     return row;
   };
-  const auto take = [&](const std::vector<Row<N>>& rows) {
-    for (const Row<N>& r : rows)
-      out.contacts.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]),
-                              get_row<D, N>(r, 3), get_row<D, N>(r, 3 + D), r[2]});
+  const auto take = [&](const Row<N>& r) {
+    out.contacts.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]),
+                            get_row<D, N>(r, 3), get_row<D, N>(r, 3 + D), r[2]});
   };
   // Each grain's total from all its contacts here, in list order, as on one rank.
   std::vector<Vec<D>>& total = out.total;
@@ -495,26 +497,30 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
         total[j] -= f;
       },
       [](std::uint32_t) {});
-  take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
-    for_each_contact_of(
-        i,
-        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-          Vec<D> shear = pass_.history().of(k);
-          emit(split(id[i], id[j], g, law_.force(g, v_rel, shear)));
-        },
-        [](std::uint32_t) {});
-  }));
+  for_each_in_whole_order<Row<N>>(
+      [&](std::size_t i, auto emit) {
+        for_each_contact_of(
+            i,
+            [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+              Vec<D> shear = pass_.history().of(k);
+              emit(split(id[i], id[j], g, law_.force(g, v_rel, shear)));
+            },
+            [](std::uint32_t) {});
+      },
+      take, Joined::kOnRank0);
   if (plate_)
-    take(in_whole_order_on_rank0<Row<N>>([&](std::size_t i, auto emit) {
-      plate_->contact(
-          p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
-          [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-            const Vec<D> f = plate_->force(i, g, v_rel);
-            total[i] += f;
-            emit(split(id[i], kPlateId, g, f));
-          },
-          [] {});
-    }));
+    for_each_in_whole_order<Row<N>>(
+        [&](std::size_t i, auto emit) {
+          plate_->contact(
+              p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+              [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+                const Vec<D> f = plate_->force(i, g, v_rel);
+                total[i] += f;
+                emit(split(id[i], kPlateId, g, f));
+              },
+              [] {});
+        },
+        take, Joined::kOnRank0);
   if (tethered_)
     wall_.add_forces(
         p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(total));
