@@ -50,7 +50,7 @@ GrainRecord<D> DemSimulator<D, Law, kMono, Space>::record_of(std::size_t i) cons
   g.mass = p_.mass()[i];
   put<D>(g.force_prev, force_prev_[i]);
   put<D>(g.torque_prev, torque_prev_[i]);
-  if (plate_ && !plate_->shear().empty()) put<D>(g.plate_shear, plate_->shear()[i]);
+  if (plate_ && plate_->keeps_shear()) put<D>(g.plate_shear, plate_->shear()[i]);
   return g;
 }
 
@@ -134,7 +134,7 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   Particles<D>::gather_one(inv_inertia_, keep, threads_);
   if (plate_) plate_->gather(keep);
   owned_ = std::move(keep_owned);
-  std::vector<Vec<D>>* shear = plate_ && !plate_->shear().empty() ? &plate_->shear() : nullptr;
+  std::vector<Vec<D>>* shear = plate_ && plate_->keeps_shear() ? &plate_->shear() : nullptr;
   for (const GrainRecord<D>& g : arrived) {
     p_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
     p_.spin().back() = get<D, Spin<D>>(g.w);
@@ -398,7 +398,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
     torque_prev.push_back(t);
   }
   std::vector<Vec<D>> plate_shear;
-  if (plate_ && !plate_->shear().empty())
+  if (plate_ && plate_->keeps_shear())
     for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
            Row<D> row;
            put_row<D, D>(row, 0, plate_->shear()[i]);

@@ -85,6 +85,9 @@ class Plate : public PlateFace<D> {
     return law_.elastic_energy(g, shear_of(i));
   }
 
+  // Whether the law keeps a u_t per grain: then shear() has a row for every grain held, none
+  // when a rank holds no grains.
+  static constexpr bool keeps_shear() { return Law::kNeedsHistory; }
   // Each grain's u_t against the plate, in grain order (empty without history): the simulator
   // reorders it with the grains and stores it in checkpoints.
   std::vector<Vec<D>>& shear() { return shear_; }
