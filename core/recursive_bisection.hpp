@@ -5,7 +5,8 @@
 // a / parts of the weight). Meant for the soft DEM's domain decomposition over MPI ranks, one
 // part per rank, each grain weighted by its measured work, so that a jet's impact region,
 // where contacts crowd, is cut finer than its column; for_each_part_near names the parts that
-// need a grain as a ghost. Deterministic: along an axis points are
+// need a grain as a ghost. LengthwiseCuts keeps the first levels' cuts along one axis (their
+// planes contain it), for work that travels along it. Deterministic: along an axis points are
 // ordered by (coordinate, index), and a cut falls only between distinct coordinates, so that
 // part_of(x) gives every point of the build the part the build gave it.
 #pragma once
@@ -25,16 +26,27 @@
 
 namespace granjet {
 
+// The first `levels` levels of a bisection cut across the longest side other than `axis`, so
+// that each of their planes contains the axis direction; deeper levels, or a node whose points
+// all share the other coordinates, cut across the longest side. Work that travels along the
+// axis (a compression front climbing a jet's column) then stays shared by the parts on either
+// side of those cuts rather than crossing from one part into the next.
+struct LengthwiseCuts {
+  int axis = 0;
+  int levels = 0;  // 0: every cut across the longest side
+};
+
 template <int D>
 class RecursiveBisection {
  public:
   // `parts` >= 1 regions for points `x` with weights `weight` (same length, each >= 0).
-  RecursiveBisection(std::span<const Vec<D>> x, std::span<const double> weight, int parts)
-      : RecursiveBisection(parts, x.size()) {
+  RecursiveBisection(std::span<const Vec<D>> x, std::span<const double> weight, int parts,
+                     LengthwiseCuts lengthwise = {})
+      : RecursiveBisection(parts, x.size(), lengthwise) {
     check(x.size(), weight.size(), parts);
     std::vector<std::uint32_t> points(x.size());
     std::iota(points.begin(), points.end(), 0u);
-    build(x, weight, points, 0, points.size(), 0, parts);
+    build(x, weight, points, 0, points.size(), 0, parts, 0);
   }
 
   // The same share-out of points spread over the ranks of `team` (each passes its own; every
@@ -48,7 +60,8 @@ class RecursiveBisection {
   // place (core/rank_team.hpp).
   template <class Team>
   static RecursiveBisection over_ranks(const Team& team, std::span<const Vec<D>> x,
-                                       std::span<const double> weight, int parts);
+                                       std::span<const double> weight, int parts,
+                                       LengthwiseCuts lengthwise = {});
 
   static constexpr int kBins = 64;
   static constexpr int kRounds = 4;
@@ -102,7 +115,26 @@ class RecursiveBisection {
     int part = 0;
   };
 
-  RecursiveBisection(int parts, std::size_t points) : parts_(parts), part_(points, 0) {}
+  RecursiveBisection(int parts, std::size_t points, LengthwiseCuts lengthwise)
+      : parts_(parts), part_(points, 0), lengthwise_(lengthwise) {
+    if (lengthwise.levels > 0 && (lengthwise.axis < 0 || lengthwise.axis >= D))
+      throw std::invalid_argument("recursive bisection: lengthwise axis " +
+                                  std::to_string(lengthwise.axis) + " outside 0.." +
+                                  std::to_string(D - 1));
+  }
+
+  // The axes in the order a node at `level` with bounding box sides `side` tries them: longest
+  // side first, the lengthwise axis last while level < lengthwise_.levels (the lowest axis of
+  // equal ones first).
+  std::array<int, D> axes_in_order(const Vec<D>& side, int level) const {
+    const auto last = [&](int a) { return level < lengthwise_.levels && a == lengthwise_.axis; };
+    std::array<int, D> axes;
+    std::iota(axes.begin(), axes.end(), 0);
+    std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) {
+      return last(a) != last(b) ? last(b) : side[a] > side[b];
+    });
+    return axes;
+  }
   static void check(std::size_t points, std::size_t weights, int parts) {
     if (parts < 1) throw std::invalid_argument("recursive bisection: parts must be at least 1");
     if (weights != points)
@@ -113,7 +145,7 @@ class RecursiveBisection {
   // Node for points[begin, end), which get parts [first_part, first_part + parts); its index.
   int build(std::span<const Vec<D>> x, std::span<const double> weight,
             std::vector<std::uint32_t>& points, std::size_t begin, std::size_t end, int first_part,
-            int parts) {
+            int parts, int level) {
     const int node = static_cast<int>(nodes_.size());
     nodes_.push_back({-1, 0.0, -1, -1, first_part});
     const auto leaf = [&] {
@@ -122,17 +154,12 @@ class RecursiveBisection {
     };
     if (parts == 1 || end - begin < 2) return leaf();
     const int lower_parts = parts / 2;
-    // The axes, longest side of the points' bounding box first.
     Vec<D> low = x[points[begin]], high = low;
     for (std::size_t k = begin; k < end; ++k) {
       low = low.cwiseMin(x[points[k]]);
       high = high.cwiseMax(x[points[k]]);
     }
-    std::array<int, D> axes;
-    std::iota(axes.begin(), axes.end(), 0);
-    const Vec<D> side = high - low;
-    std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return side[a] > side[b]; });
-    for (int axis : axes) {
+    for (int axis : axes_in_order(high - low, level)) {
       const auto first = points.begin() + static_cast<std::ptrdiff_t>(begin);
       const auto last = points.begin() + static_cast<std::ptrdiff_t>(end);
       std::sort(first, last, [&](std::uint32_t a, std::uint32_t b) {
@@ -143,9 +170,9 @@ class RecursiveBisection {
       if (cut == begin) continue;  // all points share this coordinate
       const double below = x[points[cut - 1]][axis], above = x[points[cut]][axis];
       const double middle = 0.5 * (below + above);
-      const int lower = build(x, weight, points, begin, cut, first_part, lower_parts);
-      const int upper =
-          build(x, weight, points, cut, end, first_part + lower_parts, parts - lower_parts);
+      const int lower = build(x, weight, points, begin, cut, first_part, lower_parts, level + 1);
+      const int upper = build(x, weight, points, cut, end, first_part + lower_parts,
+                              parts - lower_parts, level + 1);
       nodes_[node] = {axis, middle > below ? middle : above, lower, upper, first_part};
       return node;
     }
@@ -178,15 +205,17 @@ class RecursiveBisection {
 
   int parts_;
   std::vector<int> part_;
+  LengthwiseCuts lengthwise_;
   std::vector<Node> nodes_;
 };
 
 template <int D>
 template <class Team>
 RecursiveBisection<D> RecursiveBisection<D>::over_ranks(const Team& team, std::span<const Vec<D>> x,
-                                                        std::span<const double> weight, int parts) {
+                                                        std::span<const double> weight, int parts,
+                                                        LengthwiseCuts lengthwise) {
   check(x.size(), weight.size(), parts);
-  RecursiveBisection rcb(parts, x.size());
+  RecursiveBisection rcb(parts, x.size(), lengthwise);
   const std::size_t n = x.size();
   std::vector<double> largest{0.0};
   for (double w : weight) largest[0] = std::max(largest[0], w);
@@ -204,7 +233,7 @@ RecursiveBisection<D> RecursiveBisection<D>::over_ranks(const Team& team, std::s
   std::vector<Open> open;
   if (parts > 1) open.push_back({0, 0, parts});
   const double inf = std::numeric_limits<double>::infinity();
-  while (!open.empty()) {
+  for (int level = 0; !open.empty(); ++level) {
     const std::size_t m = open.size();
     std::vector<int> slot(rcb.nodes_.size(), -1);
     for (std::size_t k = 0; k < m; ++k) slot[open[k].node] = static_cast<int>(k);
@@ -224,20 +253,22 @@ RecursiveBisection<D> RecursiveBisection<D>::over_ranks(const Team& team, std::s
     team.min(low);
     team.max(high);
     team.sum(totals);
-    // Along the longest side (the lowest axis of equal ones), between the box's low side and
-    // just above its high one; a node of fewer than two points, or of coincident ones, is a
+    // Along the first axis of axes_in_order whose side is not empty, between the box's low side
+    // and just above its high one; a node of fewer than two points, or of coincident ones, is a
     // leaf. below: the weight under the bracket [lo, hi).
     std::vector<int> axis(m, -1);
     std::vector<double> lo(m), hi(m), target(m);
     std::vector<std::int64_t> below(m, 0);
     for (std::size_t k = 0; k < m; ++k) {
-      int best = 0;
-      for (int a = 1; a < D; ++a)
-        if (high[k * D + a] - low[k * D + a] > high[k * D + best] - low[k * D + best]) best = a;
-      if (totals[2 * k + 1] < 2 || !(high[k * D + best] > low[k * D + best])) continue;
-      axis[k] = best;
-      lo[k] = low[k * D + best];
-      hi[k] = std::nextafter(high[k * D + best], inf);
+      Vec<D> side;
+      for (int a = 0; a < D; ++a) side[a] = high[k * D + a] - low[k * D + a];
+      const std::array<int, D> axes = rcb.axes_in_order(side, level);
+      const auto best =
+          std::find_if(axes.begin(), axes.end(), [&](int a) { return side[a] > 0.0; });
+      if (totals[2 * k + 1] < 2 || best == axes.end()) continue;
+      axis[k] = *best;
+      lo[k] = low[k * D + *best];
+      hi[k] = std::nextafter(high[k * D + *best], inf);
       target[k] = static_cast<double>(totals[2 * k]) * (open[k].parts / 2) / open[k].parts;
     }
     const auto edge = [&](std::size_t k, int b) {

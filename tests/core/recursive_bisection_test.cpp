@@ -1,5 +1,6 @@
 // RecursiveBisection: every point in the part part_of gives its position, parts balanced by
-// weight (not by count), cuts across the longest side, and coincident points kept together;
+// weight (not by count), cuts across the longest side (or, in lengthwise levels, along an
+// axis), and coincident points kept together;
 // the same of the build over ranks (over_ranks, here on one rank; tests/ranks splits the points
 // over several).
 #include "core/recursive_bisection.hpp"
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <random>
 #include <vector>
 
@@ -212,6 +214,58 @@ TEST(RecursiveBisection, OverRanksKeepsCoincidentPointsTogether) {
   EXPECT_EQ(none.part_of(Vec<2>(0.0, 0.0)), 0);
   EXPECT_THROW(RecursiveBisection<2>::over_ranks(RankTeam(), x, std::vector<double>(3), 2),
                std::invalid_argument);
+}
+
+// The number of distinct parts a line of positions along `axis` through p crosses.
+template <int D>
+int parts_along(const RecursiveBisection<D>& rcb, Vec<D> p, int axis) {
+  std::vector<int> seen;
+  for (int k = -60; k <= 60; ++k) {
+    p[axis] = 0.5 * k;
+    seen.push_back(rcb.part_of(p));
+  }
+  std::sort(seen.begin(), seen.end());
+  return static_cast<int>(std::unique(seen.begin(), seen.end()) - seen.begin());
+}
+
+// A tall column (z its longest side, as a jet's): with no lengthwise levels the first cut is
+// across z; with lengthwise levels along z, 2^levels parts share every height, each line along
+// z crossing only the parts of the deeper levels' cuts; the build over ranks agrees.
+TEST(RecursiveBisection, LengthwiseLevelsCutAlongTheAxis) {
+  std::vector<Vec<3>> x = random_points<3>(3000, 19);
+  for (Vec<3>& p : x) p.z() *= 6.0;
+  const std::vector<double> w = random_weights(x.size(), 23);
+  const Vec<3> inside(1.0, -2.0, 0.0);
+  EXPECT_EQ(parts_along(RecursiveBisection<3>(x, w, 2), inside, 2), 2);
+  for (int levels : {1, 2}) {
+    const LengthwiseCuts lengthwise{2, levels};
+    for (int parts : {2, 4, 8}) {
+      const RecursiveBisection<3> rcb(x, w, parts, lengthwise);
+      expect_every_point_in_the_part_of_its_position(rcb, x);
+      const int crossed =
+          parts >> std::min(levels, static_cast<int>(std::bit_width(unsigned(parts))) - 1);
+      for (const Vec<3>& p : {inside, Vec<3>(-3.0, 4.0, 0.0), Vec<3>(4.5, 4.5, 0.0)})
+        EXPECT_EQ(parts_along(rcb, p, 2), crossed) << levels << " levels, " << parts << " parts";
+      const auto over = RecursiveBisection<3>::over_ranks(RankTeam(), x, w, parts, lengthwise);
+      expect_every_point_in_the_part_of_its_position(over, x);
+      for (const Vec<3>& p : {inside, Vec<3>(-3.0, 4.0, 0.0), Vec<3>(4.5, 4.5, 0.0)})
+        EXPECT_EQ(parts_along(over, p, 2), crossed) << levels << " levels, " << parts << " parts";
+    }
+  }
+}
+
+// Points that share their coordinates across the axis (a line along it) cannot be cut
+// lengthwise: the cut falls across the axis, and no part is left empty.
+TEST(RecursiveBisection, ALineAlongTheLengthwiseAxisIsCutAcrossIt) {
+  std::vector<Vec<2>> x;
+  for (int k = 0; k < 40; ++k) x.push_back(Vec<2>(0.25 * k, 3.0));
+  const std::vector<double> w(x.size(), 1.0);
+  const LengthwiseCuts lengthwise{0, 2};
+  const RecursiveBisection<2> rcb(x, w, 4, lengthwise);
+  expect_every_point_in_the_part_of_its_position(rcb, x);
+  const auto over = RecursiveBisection<2>::over_ranks(RankTeam(), x, w, 4, lengthwise);
+  expect_every_point_in_the_part_of_its_position(over, x);
+  EXPECT_THROW(RecursiveBisection<2>(x, w, 2, LengthwiseCuts{2, 1}), std::invalid_argument);
 }
 
 TEST(RecursiveBisection, ImbalanceIsTheHeaviestPartOverTheMean) {
