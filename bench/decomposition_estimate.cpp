@@ -4,7 +4,8 @@
 // halo exchange would send (each ghost's position, velocity and spin as doubles). Each grain
 // weighs 1 + its listed pairs (its share of the distance tests), as measured work would. The
 // geometry of a decomposition, for docs/performance.md; no rank runs anything.
-// The cut's skin is the run's run.skin (from the scene the file keeps); the frame, the last.
+// The cut's skin is the run's run.skin (from the scene the file keeps), and a jet's column is
+// cut lengthwise as a run cuts it (soft_dem/jet_cuts.hpp); the frame, the last.
 //   build/bench/granjet_decomposition RUN.h5 [--frame F] [--parts 2,4,8,16,64]
 #include <algorithm>
 #include <cstdio>
@@ -19,12 +20,14 @@
 #include "core/neighbour_list.hpp"
 #include "core/recursive_bisection.hpp"
 #include "run/scene_file.hpp"
+#include "soft_dem/jet_cuts.hpp"
 
 namespace {
 
 template <int D>
-int estimate(const std::string& file, std::size_t frame, double skin,
+int estimate(const std::string& file, std::size_t frame, const granjet::Scene& scene,
              const std::vector<int>& parts) {
+  const double skin = scene.run.skin;
   const granjet::analysis::Frame<D> f = granjet::analysis::read_frame<D>(file, frame);
   const std::size_t n = f.position.size();
   const double r_max = *std::max_element(f.radius.begin(), f.radius.end());
@@ -53,7 +56,7 @@ int estimate(const std::string& file, std::size_t frame, double skin,
   std::printf("%6s %10s %12s %12s %12s %10s %16s\n", "ranks", "imbalance", "grains/rank",
               "ghosts mean", "ghosts max", "ghost/own", "halo bytes/step");
   for (int k : parts) {
-    const granjet::RecursiveBisection<D> rcb(x, weight, k);
+    const granjet::RecursiveBisection<D> rcb(x, weight, k, granjet::dem::jet_cuts<D>(scene, cut));
     std::vector<std::size_t> owned(k, 0), ghosts(k, 0);
     for (std::size_t i = 0; i < n; ++i) {
       const int own = rcb.part()[i];
@@ -108,9 +111,9 @@ int main(int argc, char** argv) {
     const granjet::analysis::FileSummary summary = granjet::analysis::read_summary(file);
     if (last) frame = summary.frames > 0 ? summary.frames - 1 : 0;
     std::istringstream scene(summary.scene_ini);
-    const double skin = granjet::parse_scene(scene, file, {}).run.skin;
-    return summary.dimension == 2 ? estimate<2>(file, frame, skin, parts)
-                                  : estimate<3>(file, frame, skin, parts);
+    const granjet::Scene run_scene = granjet::parse_scene(scene, file, {});
+    return summary.dimension == 2 ? estimate<2>(file, frame, run_scene, parts)
+                                  : estimate<3>(file, frame, run_scene, parts);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "granjet_decomposition: %s\n", e.what());
     return 2;

@@ -67,6 +67,9 @@ struct RunSpec {
   double max_overlap = 0.5;  // blow-up when overlap exceeds this fraction of the smaller radius
   double progress_interval = 1.0;  // sim time between progress rows
   int threads = 1;  // soft DEM OpenMP threads; the results do not depend on it, bit for bit
+  // Over MPI ranks, cut a jet's column lengthwise in the first levels while the pieces stay
+  // wide (soft_dem/jet_cuts.hpp); false: every cut across the longest side.
+  bool lengthwise_cuts = false;
   // Sim time between checkpoints in the run's .partial (0: none). A checkpoint is part of the
   // run: it rebuilds the soft DEM's neighbour list, and re-predicts the event-driven calendar.
   double checkpoint_interval = 10.0;

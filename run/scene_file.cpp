@@ -235,6 +235,11 @@ const std::vector<Key>& keys() {
     k.push_back(integer_key("run.threads",
                             "OpenMP threads of the soft DEM (results are bit-identical for any)",
                             FIELD(run.threads), 1, kMaxThreads));
+    k.push_back(choice_key<bool>(
+        "run.lengthwise_cuts",
+        "over MPI ranks: auto cuts a jet's column lengthwise while its pieces stay 10 reaches "
+        "across; off (the default) cuts every part across its longest side",
+        FIELD(run.lengthwise_cuts), {{"auto", true}, {"off", false}}));
     k.push_back(real_key("jet.diameter", "D_jet (3D) or strip width 2 R_jet (2D), in d",
                          FIELD(jet.diameter), kPositive));
     k.push_back(real_key("jet.phi_tilde", "fraction of lattice sites kept, phi~0",

@@ -20,6 +20,7 @@
 #include "soft_dem/contact_laws.hpp"
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/dem_simulator_ranks.hpp"
+#include "soft_dem/jet_cuts.hpp"
 
 namespace granjet::dem {
 
@@ -71,7 +72,7 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
     max_radius = over_all_ranks(ranks, max_radius, &RankTeam::max);  // of all ranks' shares
     double reach = 2.0 * max_radius + scene.run.skin;
     if (tethered_) reach = std::max(reach, wall_.longest_bond() + scene.run.skin);
-    domain_.emplace(ranks, reach);
+    domain_.emplace(ranks, reach, jet_cuts<D>(scene, reach));
     // Each rank holds the whole target (for its springs) and hands on only its share of it.
     const GrainShare share{ranks.rank(), ranks.size()};
     const auto walls =

@@ -1,7 +1,8 @@
 // The soft DEM's grains spread over MPI ranks by space (domain decomposition): each rank owns
 // the grains of one part of a recursive coordinate bisection (core/recursive_bisection.hpp)
 // and holds, as ghosts, copies of the grains of other parts within the reach of a pair (2
-// R_max + skin, or a tether bond) of its part. At every neighbour rebuild the grains move to
+// R_max + skin, or a tether bond) of its part; a jet's column is cut lengthwise in the first
+// levels (soft_dem/jet_cuts.hpp). At every neighbour rebuild the grains move to
 // their owners and the ghosts are chosen anew; at every step each owner sends its ghosts'
 // state. The parts are cut anew, weighted by measured work, when the ranks' busy times grow
 // uneven. No rank ever holds the whole run: each builds only its share of the initial grains
@@ -69,8 +70,10 @@ struct HistoryRecord {
 template <int D>
 class Domain {
  public:
-  // reach: how far from its part a grain is needed as a ghost.
-  Domain(RankTeam team, double reach) : team_(team), reach_(reach) {}
+  // reach: how far from its part a grain is needed as a ghost; lengthwise: how the parts' cuts
+  // keep along the jet axis (soft_dem/jet_cuts.hpp).
+  Domain(RankTeam team, double reach, LengthwiseCuts lengthwise = {})
+      : team_(team), reach_(reach), lengthwise_(lengthwise) {}
 
   const RankTeam& team() const { return team_; }
   int rank() const { return team_.rank(); }
@@ -88,7 +91,7 @@ class Domain {
         mine_x.push_back(x[i]);
         mine_w.push_back(weight[i]);
       }
-    parts_.emplace(RecursiveBisection<D>::over_ranks(team_, mine_x, mine_w, ranks()));
+    parts_.emplace(RecursiveBisection<D>::over_ranks(team_, mine_x, mine_w, ranks(), lengthwise_));
   }
   bool partitioned() const { return parts_.has_value(); }
   int owner_of(const Vec<D>& x) const { return parts_->part_of(x); }
@@ -163,6 +166,7 @@ class Domain {
  private:
   RankTeam team_;
   double reach_;
+  LengthwiseCuts lengthwise_;
   std::optional<RecursiveBisection<D>> parts_;
   std::vector<int> partners_;  // the ranks this one sends ghosts to or receives them from
   std::vector<std::vector<std::uint32_t>> send_index_, recv_index_;  // by rank, in id order

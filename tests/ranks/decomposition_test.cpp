@@ -121,8 +121,10 @@ void expect_ranks_give_one_rank_bits(const std::string& scene_file,
   }
 }
 
-TEST(Ranks, Jet2dFrictionalBidisperseAb2) {
-  expect_ranks_give_one_rank_bits<2>("jet2d.ini", {"jet.grains=1500", "contact.friction=0.5"}, 4.0);
+// Cut lengthwise: jet2d's strip is 30 d wide, its reach 1.3 d (soft_dem/jet_cuts.hpp).
+TEST(Ranks, Jet2dFrictionalBidisperseAb2CutLengthwise) {
+  expect_ranks_give_one_rank_bits<2>(
+      "jet2d.ini", {"jet.grains=1500", "contact.friction=0.5", "run.lengthwise_cuts=auto"}, 4.0);
 }
 
 TEST(Ranks, Jet2dFrictionlessTetheredTargetWithRemoval) {
