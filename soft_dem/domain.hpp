@@ -1,13 +1,13 @@
 // The soft DEM's grains spread over MPI ranks by space (domain decomposition): each rank owns
 // the grains of one part of a recursive coordinate bisection (core/recursive_bisection.hpp)
 // and holds, as ghosts, copies of the grains of other parts within the reach of a pair (2
-// R_max + skin, or a tether bond) of its part; a jet's column is cut lengthwise in the first
-// levels (soft_dem/jet_cuts.hpp). At every neighbour rebuild the grains move to
-// their owners and the ghosts are chosen anew; at every step each owner sends its ghosts'
-// state. The parts are cut anew, weighted by measured work, when the ranks' busy times grow
-// uneven. No rank ever holds the whole run: each builds only its share of the initial grains
-// (core/initial_state.hpp's GrainShare), the first cut bisects over the ranks, and the first
-// rebuild moves the grains to their owners.
+// R_max + skin, or a tether bond) of its part; with run.lengthwise_cuts = auto a jet's column
+// is cut lengthwise in the first levels (soft_dem/jet_cuts.hpp). At every neighbour rebuild
+// the grains move to their owners and the ghosts are chosen anew; at every step each owner
+// sends its ghosts' state. The parts are cut anew, weighted by measured work, when the ranks'
+// busy times grow uneven. No rank ever holds the whole run: each builds only its share of the
+// initial grains (core/initial_state.hpp's GrainShare), the first cut bisects over the ranks,
+// and the first rebuild moves the grains to their owners.
 //
 // Why the results are those of one rank, bit for bit: every rank bins its grains in the cells
 // of one frame, that of all grains (CellGrid::Frame), and within a cell orders them by id; so

@@ -1,8 +1,8 @@
 // How a jet run over MPI ranks may cut its column (run.lengthwise_cuts = auto): lengthwise
 // (planes that contain the jet axis) in the bisection's first levels, while the pieces stay
-// wide. When the jet hits the target a
-// compression front climbs its column of touching grains at about 20 d per unit time, and the
-// contacts behind it are the costliest part of a step's pass. A cut across the column has the
+// wide. When the jet hits the target a compression front climbs its column of touching grains
+// at about 20 d per unit time, and the contacts behind it are the costliest part of a step's
+// pass. A cut across the column has the
 // front cross from the part below into the part above between two looks at the work; a cut
 // along it leaves each part its share of the front wherever the front is. The price is the
 // halo: a piece w across holds ghosts within one reach of each lengthwise face, about
