@@ -85,6 +85,10 @@ class DemSimulator final : public Simulator<D> {
   // for the others; returns the largest value either returned.
   template <class Advance, class Coast>
   double force_pass(Advance&& advance, Coast&& coast);
+  // The quiet pairs' classification (soft_dem/quiet_pairs.hpp), where due: after a rebuild, or
+  // once a trusted pair's grain was pushed. force_pass does it first; over ranks step() does it
+  // before, outside the work the cut balances.
+  void classify_quiet_pairs();
   // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
   std::vector<History> histories() const;
   void rebuild();

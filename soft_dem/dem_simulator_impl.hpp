@@ -215,17 +215,16 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     };
     if (!over_ranks()) {
       add_travel(force_pass([&](std::size_t i) { return ab2.advance(i); }, coast));
-    } else {  // a ghost's move is its owner's to count (ghosts never coast: kGhostBit)
+    } else {  // a ghost's move is its owner's, sent after the pass (ghosts never coast: kGhostBit)
       const std::uint8_t* owned = owned_.data();
       double own = 0.0;
+      // A classification comes after a rebuild or a trusted pair's push, not at every step: the
+      // cut that balances the per-step passes leaves it out, as it leaves out the rebuilds.
+      classify_quiet_pairs();
       {
         const WorkBalance::Pass work(balance_);
-        own = force_pass(
-            [&](std::size_t i) {
-              const double speed2 = ab2.advance(i);
-              return owned[i] ? speed2 : 0.0;
-            },
-            coast);
+        own = force_pass([&](std::size_t i) { return owned[i] ? ab2.advance(i) : ab2.leave(i); },
+                         coast);
       }
       update_ghosts();
       add_travel(agree(own));
@@ -257,6 +256,7 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     add_travel(over_ranks() ? agree(speed2) : speed2);
     if (needs_rebuild_) rebuild();  // before the forces at t + dt
     const VerletStep<D, kRotation> corrector = verlet_step();
+    classify_quiet_pairs();  // not balanced work, as for Adams-Bashforth-2
     {
       const WorkBalance::Pass work(balance_);
       force_pass(
@@ -306,6 +306,16 @@ auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotatio
           inv_inertia_.data(),  dt_};
 }
 
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::classify_quiet_pairs() {
+  if (quiet_.fresh()) return;
+  const auto radius = p_.radius();
+  quiet_.classify(
+      p_, force_prev_, pairs_, pair_row_, space_, dt_,
+      [&](std::uint32_t i, std::uint32_t j) { return radius_of(radius, i) + radius_of(radius, j); },
+      over_ranks() ? std::span<const std::uint8_t>(owned_) : std::span<const std::uint8_t>());
+}
+
 // The whole pass (the phases of force_pass.hpp): the quiet pairs' classification where due,
 // then in one parallel region the tethers, the pairs, the plate and each grain's update.
 // force_ and torque_ must be zero on entry.
@@ -314,15 +324,7 @@ template <class Advance, class Coast>
 [[gnu::flatten]]  // inline the contact law and the grain update into their loops
 double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
-  if (!quiet_.fresh()) {
-    const auto radius = p_.radius();
-    quiet_.classify(
-        p_, force_prev_, pairs_, pair_row_, space_, dt_,
-        [&](std::uint32_t i, std::uint32_t j) {
-          return radius_of(radius, i) + radius_of(radius, j);
-        },
-        over_ranks() ? std::span<const std::uint8_t>(owned_) : std::span<const std::uint8_t>());
-  }
+  classify_quiet_pairs();
   const auto tether_forces = [&] {
     std::optional<PhaseProfile::Timer> tethering;
     if (team_index() == 0) tethering.emplace(&this->profile(), phase_.tethers);

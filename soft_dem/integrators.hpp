@@ -67,6 +67,14 @@ struct Ab2Step {
     return speed2;
   }
 
+  // A grain another rank moves (a ghost, whose owner's state overwrites this one after the
+  // pass): only its sums for the next pass start from zero. Its move counts on its owner.
+  double leave(std::size_t i) const {
+    f_next[i].setZero();
+    if constexpr (kRotation) t_next[i] = Dim<D>::zero_spin();
+    return 0.0;
+  }
+
   // Grains [begin, end) without a force (pushed[i] == 0) fly straight on and their zero forces
   // are not touched (most of a jet in flight); the pushed ones are left to advance. Returns the
   // largest squared speed of the coasting ones. One straight loop over all the grains, which

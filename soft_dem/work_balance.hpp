@@ -1,12 +1,13 @@
-// When a run over ranks cuts its parts anew (soft_dem/domain.hpp). The ranks meet at every
-// step (the ghost states), so what a step costs is the slowest rank's pass, and the cut balances
-// exactly that: each rank's work is the wall time of its per-step passes (forces and update;
-// Verlet's predictor), not its rebuilds, which meet on their own, nor rank 0's output and
+// When a run over ranks cuts its parts anew (soft_dem/domain.hpp). The ranks meet at every step
+// (the ghost states), so what a step costs is the slowest rank's pass, and the cut balances exactly
+// that: each rank's work is the wall time of its per-step passes (forces and update; Verlet's
+// predictor), not its rebuilds and the quiet pairs' classifications, which come once in many steps
+// (a cut that evened them out would leave every other step uneven), nor rank 0's output and
 // analysis, which no cut can share. Every kRebuildsPerLook neighbour rebuilds the ranks compare
-// their work since the last look; when the busiest rank's exceeds the mean by kRecutImbalance,
-// the parts are cut anew, each rank's grains weighted to add up to its work. The run's imbalance
-// is the busiest rank's work over the mean, summed over the looks: the share of the passes'
-// wall time an even split would save.
+// their work since the last look; when the busiest rank's exceeds the mean by kRecutImbalance, the
+// parts are cut anew, each rank's grains weighted to add up to its work. The run's imbalance is the
+// busiest rank's work over the mean, summed over the looks: the share of the passes' wall time an
+// even split would save.
 //
 // The ranks look at every rebuild: in a jet of touching grains the impact sends a compression
 // front up the column at about 20 d per unit of time, and the contacts behind it are the
