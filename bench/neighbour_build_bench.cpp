@@ -1,4 +1,6 @@
-// Cell grid + Verlet half-list build on the initial 3D jet (20,000 grains, fcc).
+// Cell grid + Verlet half-list build on the initial 3D jet (20,000 grains, fcc), with one radius
+// for all grains as the soft DEM builds a monodisperse scene's list (kUniform) and with a radius
+// read per candidate.
 #include <benchmark/benchmark.h>
 
 #include "core/initial_state.hpp"
@@ -6,6 +8,7 @@
 
 namespace {
 
+template <bool kUniform>
 void BM_NeighbourBuildJet3d(benchmark::State& state) {
   const granjet::Scene scene;  // the defaults are jet3d's
   const granjet::Particles<3> p = granjet::build_initial_state<3>(scene);
@@ -22,7 +25,7 @@ void BM_NeighbourBuildJet3d(benchmark::State& state) {
       sorted.push_back(p.position()[k]);
       radius.push_back(p.radius()[k]);
     }
-    granjet::build_half_pairs<3>(
+    granjet::build_half_pairs<3, kUniform>(
         grid, sorted, radius, skin, [](auto, auto) { return false; }, pairs);
     benchmark::DoNotOptimize(pairs.partner.data());
   }
@@ -32,4 +35,5 @@ void BM_NeighbourBuildJet3d(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_NeighbourBuildJet3d)->Arg(30)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_NeighbourBuildJet3d, true)->Arg(30)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_NeighbourBuildJet3d, false)->Arg(30)->Arg(40)->Unit(benchmark::kMillisecond);

@@ -46,14 +46,17 @@ inline void merge_late_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>
 // `positions` must already be in grid order (cell c holds indices start(c)..start(c+1)-1).
 // `excluded(i, j)` drops pairs that never interact (e.g. two wall grains); `space` gives the
 // separation (plain or minimum image). With `threads` > 1 contiguous runs of cells are scanned
-// in parallel and joined in order: the same list as one thread, entry for entry.
-template <int D, class Excluded, class Space = OpenSpace<D>>
+// in parallel and joined in order: the same list as one thread, entry for entry. kUniform: all
+// grains have radius[0], so every pair has one cut-off and no radius is read per candidate
+// (2 R + skin is R + R + skin exactly: the same list).
+template <int D, bool kUniform = false, class Excluded, class Space = OpenSpace<D>>
 void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions,
                       std::span<const double> radius, double skin, Excluded&& excluded,
                       PairList& out, const Space& space = {}, int threads = 1) {
   using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
   const std::size_t n = positions.size();
   out.first.assign(n + 1, 0);
+  const double uniform_cut = kUniform && n > 0 ? radius[0] + radius[0] + skin : 0.0;
   // Chunk t holds cells [cell_begin[t], cell_begin[t+1]), about n / threads grains each.
   std::vector<std::size_t> cell_begin(threads + 1, grid.cells());
   std::size_t c = 0;
@@ -93,11 +96,11 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
         const std::size_t room = count + (end - i - 1) + forward_grains;
         if (partner.size() < room) partner.resize(2 * room);
         std::uint32_t* slot = partner.data();
+        const Vec<D> x_i = positions[i];
         auto consider = [&](std::uint32_t j) {
-          const double cut = radius[i] + radius[j] + skin;
+          const double cut = kUniform ? uniform_cut : radius[i] + radius[j] + skin;
           const bool near =
-              (space.separation(positions[i], positions[j]).squaredNorm() < cut * cut) &
-              !excluded(i, j);
+              (space.separation(x_i, positions[j]).squaredNorm() < cut * cut) & !excluded(i, j);
           slot[count] = j;
           count += near;
         };

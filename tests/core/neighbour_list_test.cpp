@@ -141,6 +141,54 @@ TYPED_TEST(NeighbourList, ThreadedBuildEqualsSerialBuild) {
   }
 }
 
+// With one radius for all grains the build that reads no radius per candidate gives the list of
+// the build that does, entry for entry, exclusions kept (open space and periodic, 1 and 3
+// threads). Grains on a lattice of spacing 1 put many pairs right at 2 R, where a cut-off
+// computed otherwise than R + R + skin would drop or keep pairs of its own.
+TYPED_TEST(NeighbourList, UniformRadiusBuildEqualsThePerGrainBuild) {
+  constexpr int D = TypeParam::kDim;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 8.0);
+  std::vector<Vec<D>> x;
+  for (int k = 0; k < (D == 2 ? 64 : 512); ++k) {  // a lattice, then scattered grains
+    Vec<D> p;
+    for (int d = 0, rest = k; d < D; ++d, rest /= 8) p[d] = 0.5 + rest % 8;
+    x.push_back(p);
+  }
+  for (int k = 0; k < 200; ++k) {
+    Vec<D> p;
+    for (int d = 0; d < D; ++d) p[d] = u(rng);
+    x.push_back(p);
+  }
+  const std::vector<double> radius(x.size(), 0.35);
+  const double skin = 0.3;  // cut-off 1.0: the lattice's neighbours lie on it
+  const auto odd_pairs = [](std::uint32_t i, std::uint32_t j) { return (i & j & 1) != 0; };
+  const PeriodicBox<D> space(Vec<D>::Constant(8.0));
+  for (bool periodic : {false, true})
+    for (int threads : {1, 3}) {
+      CellGrid<D> grid;
+      if (periodic)
+        grid.build_periodic(x, space.box, 2 * radius[0] + skin);
+      else
+        grid.build(x, 2 * radius[0] + skin);
+      std::vector<Vec<D>> sorted;
+      for (std::uint32_t k : grid.order()) sorted.push_back(x[k]);
+      PairList per_grain, uniform;
+      if (periodic) {
+        build_half_pairs<D>(grid, sorted, radius, skin, odd_pairs, per_grain, space, threads);
+        build_half_pairs<D, true>(grid, sorted, radius, skin, odd_pairs, uniform, space, threads);
+      } else {
+        build_half_pairs<D>(grid, sorted, radius, skin, odd_pairs, per_grain, OpenSpace<D>{},
+                            threads);
+        build_half_pairs<D, true>(grid, sorted, radius, skin, odd_pairs, uniform, OpenSpace<D>{},
+                                  threads);
+      }
+      EXPECT_GT(per_grain.size(), 100u);
+      EXPECT_EQ(per_grain.first, uniform.first) << "periodic " << periodic << ", " << threads;
+      EXPECT_EQ(per_grain.partner, uniform.partner) << "periodic " << periodic << ", " << threads;
+    }
+}
+
 }  // namespace
 }  // namespace granjet
 
