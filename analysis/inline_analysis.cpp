@@ -32,7 +32,10 @@ void InlineAnalysis<D>::observe(Simulator<D>& sim) {
   sim.record_transfers(counted);
   transfers_.clear();
   if (counted) sim.collect_transfers(transfers_);
-  analysis_.sample(sim.time(), sim.particles(), transfers_);
+  // Outside the window only the scattered grains count (RunAnalysis::take).
+  analysis_.sample(sim.time(),
+                   counted ? sim.particles() : sim.particles_beyond(analysis_.scatter_radius()),
+                   transfers_);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

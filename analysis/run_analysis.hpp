@@ -87,6 +87,8 @@ class RunAnalysis {
   double next_sample_time() const { return next_; }
   bool due(double time) const { return time >= next_ - 1e-9 * config_.sample_interval; }
   bool in_window(double time) const;
+  // Outside the window a sample looks only at the grains beyond this distance from the jet axis.
+  double scatter_radius() const { return config_.scatter_radius; }
   // `transfers`: everything collect_transfers returned since the previous sample (they may be
   // left empty outside the window, where they are not used).
   void sample(double time, const Particles<D>& particles,

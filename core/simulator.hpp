@@ -88,6 +88,13 @@ class Simulator {
   virtual void advance_to(double t) = 0;
   virtual double time() const = 0;
   virtual const Particles<D>& particles() const = 0;
+  // At least the grains farther than `radius` from the jet axis (kJetAxis), in particles()'s
+  // order: a look that needs only those (the scattered grains) need not gather the rest over
+  // MPI ranks. Without ranks, and by default, particles() itself.
+  virtual const Particles<D>& particles_beyond(double radius) const {
+    (void)radius;
+    return particles();
+  }
   // Appends the momentum transfers since the last call (soft DEM: the current pair forces
   // times the time since the last call, a sampled estimate; event-driven: every impulse).
   virtual void collect_transfers(std::vector<PairImpulse<D>>& out) = 0;

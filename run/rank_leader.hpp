@@ -22,6 +22,7 @@ namespace granjet {
 enum class RankOrder : int {
   kAdvance,
   kParticles,
+  kParticlesBeyond,
   kTransfers,
   kStats,
   kForces,
@@ -34,7 +35,7 @@ enum class RankOrder : int {
 
 struct RankCall {
   RankOrder order = RankOrder::kDone;
-  double time = 0.0;
+  double value = 0.0;  // advance_to's time, particles_beyond's radius
 };
 
 // Each rank's row, on rank 0 in rank order (none elsewhere). Collective.
@@ -75,6 +76,10 @@ class RankLeader final : public Simulator<D> {
   const Particles<D>& particles() const override {
     call({RankOrder::kParticles});
     return sim_->particles();
+  }
+  const Particles<D>& particles_beyond(double radius) const override {
+    call({RankOrder::kParticlesBeyond, radius});
+    return sim_->particles_beyond(radius);
   }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override {
     call({RankOrder::kTransfers});
@@ -123,12 +128,15 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
     switch (c.order) {
       case RankOrder::kAdvance:
         try {
-          sim.advance_to(c.time);
+          sim.advance_to(c.value);
         } catch (const BlowUpError&) {  // the leader reports it
         }
         break;
       case RankOrder::kParticles:
         sim.particles();
+        break;
+      case RankOrder::kParticlesBeyond:
+        sim.particles_beyond(c.value);
         break;
       case RankOrder::kTransfers: {
         std::vector<PairImpulse<D>> ignored;

@@ -51,6 +51,7 @@ class DemSimulator final : public Simulator<D> {
   void advance_to(double t) override;
   double time() const override { return static_cast<double>(step_) * dt_; }
   const Particles<D>& particles() const override;
+  const Particles<D>& particles_beyond(double radius) const override;
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   SimStats stats() const override;
   bool has_contact_forces() const override { return true; }
@@ -93,6 +94,9 @@ class DemSimulator final : public Simulator<D> {
   std::vector<History> histories() const;
   void rebuild();
   void rebuild(std::vector<History> history);
+  // Over ranks: the grains farther than sqrt(beyond2) from the jet axis into whole_ on rank 0
+  // (all for a negative beyond2). Collective.
+  void gather_whole(double beyond2) const;
   // Over ranks: the cell frame of all grains (CellGrid::Frame) for pairs of reach `cut`, and a
   // value combined over the ranks.
   typename CellGrid<D>::Frame whole_frame(double cut) const;

@@ -825,28 +825,49 @@ template <int D, class Law, bool kMono, class Space>
 const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles() const {
   if (!over_ranks()) return p_;
   if (!whole_fresh_) {
-    struct Grain {  // what Particles holds of a grain
-      GrainId id;
-      GrainKind kind;
-      double x[D], v[D], w[kSpinWidth<D>], radius, mass;
-    };
-    whole_.clear();  // its memory stays: each sample refills it
-    for_each_in_whole_order<Grain>(
-        [&](std::size_t i, auto emit) {
-          Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
-          put<D>(g.x, p_.position()[i]);
-          put<D>(g.v, p_.velocity()[i]);
-          put<D>(g.w, p_.spin()[i]);
-          emit(g);
-        },
-        [&](const Grain& g) {
-          whole_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
-          whole_.spin().back() = get<D, Spin<D>>(g.w);
-        },
-        Joined::kOnRank0);
+    gather_whole(-1.0);
     whole_fresh_ = true;
   }
   return whole_;
+}
+
+// Over ranks whole_ then holds only those grains (not the whole: whole_fresh_ stays false), and
+// a few more: the bound is loosened by a relative 1e-9, so that at the edge the caller's own
+// test decides.
+template <int D, class Law, bool kMono, class Space>
+const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles_beyond(double radius) const {
+  if (!over_ranks() || whole_fresh_ || !(radius > 0.0)) return particles();
+  const double beyond = radius * (1.0 - 1e-9);
+  gather_whole(beyond * beyond);
+  return whole_;
+}
+
+// Every grain farther than sqrt(beyond2) from the jet axis (a NaN position too) into whole_ on
+// rank 0, in the order one rank holds them; a negative beyond2 gathers all.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::gather_whole(double beyond2) const {
+  struct Grain {  // what Particles holds of a grain
+    GrainId id;
+    GrainKind kind;
+    double x[D], v[D], w[kSpinWidth<D>], radius, mass;
+  };
+  whole_.clear();  // its memory stays: each sample refills it
+  for_each_in_whole_order<Grain>(
+      [&](std::size_t i, auto emit) {
+        Vec<D> across = p_.position()[i];
+        across[kJetAxis<D>] = 0.0;
+        if (across.squaredNorm() <= beyond2) return;
+        Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
+        put<D>(g.x, p_.position()[i]);
+        put<D>(g.v, p_.velocity()[i]);
+        put<D>(g.w, p_.spin()[i]);
+        emit(g);
+      },
+      [&](const Grain& g) {
+        whole_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
+        whole_.spin().back() = get<D, Spin<D>>(g.w);
+      },
+      Joined::kOnRank0);
 }
 
 template <int D, class Law, bool kMono, class Space>

@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/jet_geometry.hpp"
 #include "core/rank_team.hpp"
 #include "core/recursive_bisection.hpp"
 #include "core/state_archive.hpp"
@@ -186,6 +187,38 @@ TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
     EXPECT_EQ(one->stats().contacts, t < 0.2 ? 1 : 0) << "t = " << t;
     expect_samples_of_one_rank<3>(*one, *spread);
   }
+}
+
+// A look at the grains beyond a distance from the jet axis (the analysis outside its window)
+// gets on rank 0 exactly the one-rank run's grains beyond it, in its order, and nothing
+// elsewhere; particles() afterwards is the whole again.
+TEST(Ranks, GrainsBeyondARadiusAreTheOneRankRunsGrainsBeyondIt) {
+  const RankTeam world = RankTeam::world();
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
+                                 {"jet.grains=2000", "wall.diameter=14"});
+  auto one = dem::make_dem_simulator<3>(scene);
+  auto spread = dem::make_dem_simulator<3>(scene, world);
+  one->advance_to(3.0);
+  spread->advance_to(3.0);
+  const double radius = 4.0;
+  const Particles<3>& whole = one->particles();
+  const auto across = [](Vec<3> x) {
+    x[kJetAxis<3>] = 0.0;
+    return x.norm();
+  };
+  std::vector<std::uint32_t> beyond;
+  for (std::uint32_t i = 0; i < whole.size(); ++i) {
+    const double r = across(whole.position()[i]);
+    ASSERT_FALSE(r > radius * (1.0 - 1e-6) && r <= radius) << "a grain on the edge: move it";
+    if (r > radius) beyond.push_back(i);
+  }
+  ASSERT_GT(beyond.size(), 10u);
+  ASSERT_LT(beyond.size(), whole.size() / 2);
+  Particles<3> expected = whole;
+  expected.gather(beyond, 1);
+  expect_whole_on_rank0(raw_state(expected), raw_state(spread->particles_beyond(radius)),
+                        "the grains beyond r = 4");
+  expect_whole_on_rank0(raw_state(whole), raw_state(spread->particles()), "then all grains");
 }
 
 // A gather into a list kept from call to call (its memory reused) leaves in it only this
