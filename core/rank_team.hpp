@@ -87,8 +87,8 @@ class RankTeam {
   // (both of size() lists). The same relation seen from both sides: only those ranks take
   // part, and none at all for no partners. The lists are the caller's, kept from call to call
   // so that their memory is reused. With `sizes_known`, each from[r] already has the length
-  // that r sends (one message each way; another length is an error); otherwise a round of
-  // sizes comes first.
+  // that r sends (another length is an error, raised on the receiving rank); otherwise a round
+  // of sizes comes first.
   template <class T>
   void exchange_into(const std::vector<std::vector<T>>& to, std::vector<std::vector<T>>& from,
                      std::span<const int> partners, bool sizes_known) const {

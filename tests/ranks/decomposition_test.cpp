@@ -161,8 +161,6 @@ TEST(Ranks, Jet3dFrictionlessBidisperseAb2) {
                                      3.0);
 }
 
-// A checkpoint written over K ranks (rank 0's, the only whole one) resumes on one rank, and one
-// written on one rank resumes over K, each going on as the run that wrote it.
 // Two grains, one per part: their contact crosses ranks for its whole duration, and its
 // tangential history (an oblique, frictional impact) lives on both owners. Compared during the
 // contact and after it; with more ranks than grains some ranks own none.
@@ -219,34 +217,6 @@ TEST(Ranks, GrainsBeyondARadiusAreTheOneRankRunsGrainsBeyondIt) {
   expect_whole_on_rank0(raw_state(expected), raw_state(spread->particles_beyond(radius)),
                         "the grains beyond r = 4");
   expect_whole_on_rank0(raw_state(whole), raw_state(spread->particles()), "then all grains");
-}
-
-// A gather into a list kept from call to call (its memory reused) leaves in it only this
-// call's values, in rank order, whether the list held more before or fewer.
-TEST(Ranks, GatherIntoAKeptListHoldsOnlyThisCallsValues) {
-  const RankTeam world = RankTeam::world();
-  std::vector<std::int64_t> on_rank0(1000, -1), everywhere(1000, -1);
-  for (int round : {1, 2, 3}) {
-    // Rank r sends round * (r + 1) values r * 100 + k.
-    std::vector<std::int64_t> mine, expected;
-    for (int r = 0; r < world.size(); ++r)
-      for (int k = 0; k < round * (r + 1); ++k) {
-        if (r == world.rank()) mine.push_back(100 * r + k);
-        expected.push_back(100 * r + k);
-      }
-    if (round == 3) {  // fewer than the last round
-      mine.resize(1);
-      expected.clear();
-      for (int r = 0; r < world.size(); ++r) expected.push_back(100 * r);
-    }
-    world.gather_into<std::int64_t>(mine, on_rank0);
-    world.all_gather_into<std::int64_t>(mine, everywhere);
-    EXPECT_EQ(everywhere, expected) << "round " << round;
-    if (world.rank() == 0)
-      EXPECT_EQ(on_rank0, expected) << "round " << round;
-    else
-      EXPECT_TRUE(on_rank0.empty()) << "round " << round << ": rank " << world.rank();
-  }
 }
 
 // The bisection over ranks, of points dealt out to the ranks in turn, gives the regions that
@@ -307,6 +277,8 @@ TEST(Ranks, WorkBalanceCutsAnewWhenTheBusiestRankPassesTheMean) {
   EXPECT_EQ(balance.recuts(), 1);
 }
 
+// A checkpoint written over K ranks (rank 0's, the only whole one) resumes on one rank, and one
+// written on one rank resumes over K, each going on as the run that wrote it.
 TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
   const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
                                  {"jet.grains=2000", "wall.diameter=14", "contact.friction=0.5"});
