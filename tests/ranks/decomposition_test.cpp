@@ -161,6 +161,28 @@ TEST(Ranks, Jet3dFrictionlessBidisperseAb2) {
                                      3.0);
 }
 
+// Fewer grains than ranks on a frictional plate: some rank holds no grain at every rebuild,
+// while the plate keeps a tangential-history slot for each grain (the law is frictional) that
+// moves with its grain between ranks. The grains fall onto the plate and bounce.
+TEST(Ranks, RanksWithoutGrainsOnTheFrictionalPlate) {
+  const RankTeam world = RankTeam::world();
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
+                                 {"jet.grains=" + std::to_string(world.size() - 1),
+                                  "wall.kind=plate", "wall.diameter=14", "contact.friction=0.5"});
+  auto one = dem::make_dem_simulator<3>(scene);
+  auto spread = dem::make_dem_simulator<3>(scene, world);
+  for (double t : {2.0, 4.0, 8.0}) {
+    one->advance_to(t);
+    spread->advance_to(t);
+    expect_whole_on_rank0(raw_state(one->particles()), raw_state(spread->particles()),
+                          "the grains at t = " + std::to_string(t));
+    EXPECT_EQ(energies(one->energy()), energies(spread->energy())) << "t = " << t;
+    EXPECT_EQ(one->stats().neighbour_rebuilds, spread->stats().neighbour_rebuilds);
+  }
+  EXPECT_GT(one->stats().neighbour_rebuilds, 10);
+  EXPECT_GT(one->energy().dissipated, 0.0) << "the grains never reached the plate";
+}
+
 // Two grains, one per part: their contact crosses ranks for its whole duration, and its
 // tangential history (an oblique, frictional impact) lives on both owners. Compared during the
 // contact and after it; with more ranks than grains some ranks own none.
