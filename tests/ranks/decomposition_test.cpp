@@ -61,6 +61,16 @@ std::vector<double> energies(const EnergyBalance& e) {
   return {e.kinetic, e.rotational, e.elastic, e.removed, e.dissipated};
 }
 
+// Both runs to t: the same grains (whole on rank 0) and energies.
+template <int D>
+void advance_both_and_compare(Simulator<D>& one, Simulator<D>& spread, double t) {
+  one.advance_to(t);
+  spread.advance_to(t);
+  expect_whole_on_rank0(raw_state(one.particles()), raw_state(spread.particles()),
+                        "the grains at t = " + std::to_string(t));
+  EXPECT_EQ(energies(one.energy()), energies(spread.energy())) << "t = " << t;
+}
+
 // The sampled forces and transfers, in the order and with the bits of one rank.
 template <int D>
 void expect_samples_of_one_rank(Simulator<D>& one, Simulator<D>& spread) {
@@ -103,11 +113,7 @@ void expect_ranks_give_one_rank_bits(const std::string& scene_file,
   auto spread = dem::make_dem_simulator<D>(scene, world);
   // Compared at several times, so that rebuilds, moves and re-cuts come between.
   for (double t : {0.25 * t_end, t_end}) {
-    one->advance_to(t);
-    spread->advance_to(t);
-    expect_whole_on_rank0(raw_state(one->particles()), raw_state(spread->particles()),
-                          "the grains at t = " + std::to_string(t));
-    EXPECT_EQ(energies(one->energy()), energies(spread->energy())) << "t = " << t;
+    advance_both_and_compare(*one, *spread, t);
     const SimStats a = one->stats(), b = spread->stats();
     EXPECT_EQ(a.steps, b.steps);
     EXPECT_EQ(a.particle_steps, b.particle_steps);
@@ -172,11 +178,7 @@ TEST(Ranks, RanksWithoutGrainsOnTheFrictionalPlate) {
   auto one = dem::make_dem_simulator<3>(scene);
   auto spread = dem::make_dem_simulator<3>(scene, world);
   for (double t : {2.0, 4.0, 8.0}) {
-    one->advance_to(t);
-    spread->advance_to(t);
-    expect_whole_on_rank0(raw_state(one->particles()), raw_state(spread->particles()),
-                          "the grains at t = " + std::to_string(t));
-    EXPECT_EQ(energies(one->energy()), energies(spread->energy())) << "t = " << t;
+    advance_both_and_compare(*one, *spread, t);
     EXPECT_EQ(one->stats().neighbour_rebuilds, spread->stats().neighbour_rebuilds);
   }
   EXPECT_GT(one->stats().neighbour_rebuilds, 10);
@@ -198,11 +200,7 @@ TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
   ASSERT_EQ(parts.part().size(), 2u);
   ASSERT_NE(parts.part()[0], parts.part()[1]) << "the two grains start on one rank";
   for (double t : {0.09, 0.12, 0.5}) {
-    one->advance_to(t);
-    spread->advance_to(t);
-    expect_whole_on_rank0(raw_state(one->particles()), raw_state(spread->particles()),
-                          "the grains at t = " + std::to_string(t));
-    EXPECT_EQ(energies(one->energy()), energies(spread->energy())) << "t = " << t;
+    advance_both_and_compare(*one, *spread, t);
     EXPECT_EQ(one->stats().contacts, spread->stats().contacts) << "t = " << t;
     EXPECT_EQ(one->stats().contacts, t < 0.2 ? 1 : 0) << "t = " << t;
     expect_samples_of_one_rank<3>(*one, *spread);
