@@ -58,15 +58,18 @@ struct Piece {
 constexpr std::size_t kPiece = 4000;  // 4 KiB less room for the transport's headers
 constexpr std::size_t kPiecewiseUpTo = 16 * 1024;
 
-// Where a message of `bytes` is cut: full pieces, then one shorter piece (possibly empty), so
-// that every message is at least one piece and ends with a short one.
-std::vector<Piece> pieces_of(std::size_t bytes) {
-  if (bytes > kPiecewiseUpTo) return {{0, bytes}};
-  std::vector<Piece> pieces;
+// Calls visit(piece) for each piece of a message of `bytes`, in order: full pieces, then one
+// shorter piece (possibly empty), so that every message is at least one piece and ends with a
+// short one.
+template <class Visit>
+void for_each_piece(std::size_t bytes, int rank, Visit&& visit) {
+  if (bytes > kPiecewiseUpTo) {
+    visit(Piece{0, bytes, rank});
+    return;
+  }
   std::size_t offset = 0;
-  for (; bytes - offset >= kPiece; offset += kPiece) pieces.push_back({offset, kPiece});
-  pieces.push_back({offset, bytes - offset});
-  return pieces;
+  for (; bytes - offset >= kPiece; offset += kPiece) visit(Piece{offset, kPiece, rank});
+  visit(Piece{offset, bytes - offset, rank});
 }
 
 std::vector<int> offsets_of(const std::vector<int>& counts, std::size_t& total) {
@@ -192,20 +195,20 @@ void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
   std::vector<Piece> pieces;  // the receives, in the order they are posted
   for (int r : partners) {
     inbox[r] = from(r, incoming[r]);
-    for (const Piece& p : pieces_of(inbox[r].size())) {
-      pieces.push_back({p.offset, p.bytes, r});
+    for_each_piece(inbox[r].size(), r, [&](const Piece& p) {
+      pieces.push_back(p);
       requests.emplace_back();
       MPI_Irecv(inbox[r].data() + p.offset, count_of(p.bytes), MPI_BYTE, r, kDataTag,
                 MPI_COMM_WORLD, &requests.back());
-    }
+    });
   }
   const std::size_t receives = requests.size();
   for (int r : partners)
-    for (const Piece& p : pieces_of(to[r].size())) {
+    for_each_piece(to[r].size(), r, [&](const Piece& p) {
       requests.emplace_back();
       MPI_Isend(to[r].data() + p.offset, count_of(p.bytes), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
                 &requests.back());
-    }
+    });
   // One piece at a time, so that a sender that cut its message otherwise (another length) is
   // caught at the first piece that differs rather than waited for: a longer piece is MPI's
   // truncation error, a shorter one is caught here.
