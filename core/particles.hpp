@@ -68,22 +68,26 @@ class Particles {
 
   // Reorders every array so that new index k holds old index order[k]; `order` may be shorter
   // than size() (the grains left out are dropped).
-  // `threads` share the copying (the result is the same for any count).
-  void gather(std::span<const std::uint32_t> order, int threads = 1) {
-    gather_one(id_, order, threads);
-    gather_one(kind_, order, threads);
-    gather_one(pos_, order, threads);
-    gather_one(vel_, order, threads);
-    gather_one(omega_, order, threads);
-    gather_one(radius_, order, threads);
-    gather_one(mass_, order, threads);
-    gather_one(inv_mass_, order, threads);
+  // `threads` share the copying (the result is the same for any count). room: how many grains
+  // are about to be added, whose place is reserved (a domain decomposition's arrivals: added
+  // to arrays gathered to their exact size, they would copy every array to one twice as long).
+  void gather(std::span<const std::uint32_t> order, int threads = 1, std::size_t room = 0) {
+    gather_one(id_, order, threads, room);
+    gather_one(kind_, order, threads, room);
+    gather_one(pos_, order, threads, room);
+    gather_one(vel_, order, threads, room);
+    gather_one(omega_, order, threads, room);
+    gather_one(radius_, order, threads, room);
+    gather_one(mass_, order, threads, room);
+    gather_one(inv_mass_, order, threads, room);
   }
 
   template <class T>
   static void gather_one(std::vector<T>& values, std::span<const std::uint32_t> order,
-                         int threads = 1) {
-    std::vector<T> out(order.size());
+                         int threads = 1, std::size_t room = 0) {
+    std::vector<T> out;
+    out.reserve(order.size() + room);
+    out.resize(order.size());
     const auto n = static_cast<std::int64_t>(order.size());
     // Each thread writes (and so first touches) the stretch of the new order it will own.
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)

@@ -82,6 +82,8 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   std::vector<int> owner(n, -1);
   std::vector<std::uint32_t> keep;
   std::vector<std::uint8_t> keep_owned;
+  keep.reserve(n);
+  keep_owned.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (!owned_[i]) continue;
     owner[i] = domain.owner_of(x[i]);
@@ -106,6 +108,7 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   // A contact's history goes to the owners of its grains, from the owner of its first.
   std::vector<std::vector<HistoryRecord<D>>> history_to(domain.ranks());
   std::vector<History> kept_history;
+  kept_history.reserve(history.size());
   for (const History& h : history) {
     const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
     if (a == kRemoved || b == kRemoved || !owned_[a]) continue;
@@ -128,12 +131,14 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
     history.push_back({r.a, r.b, get<D, Vec<D>>(r.shear)});
 
   for (GrainId id : p_.id()) index_of_id_[id] = kRemoved;
-  p_.gather(keep, threads_);
-  Particles<D>::gather_one(force_prev_, keep, threads_);
-  Particles<D>::gather_one(torque_prev_, keep, threads_);
-  Particles<D>::gather_one(inv_inertia_, keep, threads_);
-  if (plate_) plate_->gather(keep);
+  const std::size_t room = arrived.size();
+  p_.gather(keep, threads_, room);
+  Particles<D>::gather_one(force_prev_, keep, threads_, room);
+  Particles<D>::gather_one(torque_prev_, keep, threads_, room);
+  Particles<D>::gather_one(inv_inertia_, keep, threads_, room);
+  if (plate_) plate_->gather(keep, room);
   owned_ = std::move(keep_owned);
+  owned_.reserve(owned_.size() + room);
   std::vector<Vec<D>>* shear = plate_ && plate_->keeps_shear() ? &plate_->shear() : nullptr;
   for (const GrainRecord<D>& g : arrived) {
     p_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
