@@ -2,9 +2,11 @@
 // removal); ids never change, so output and contact history are independent of the order.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/dim.hpp"
@@ -68,26 +70,62 @@ class Particles {
 
   // Reorders every array so that new index k holds old index order[k]; `order` may be shorter
   // than size() (the grains left out are dropped).
-  // `threads` share the copying (the result is the same for any count). room: how many grains
-  // are about to be added, whose place is reserved (a domain decomposition's arrivals: added
-  // to arrays gathered to their exact size, they would copy every array to one twice as long).
-  void gather(std::span<const std::uint32_t> order, int threads = 1, std::size_t room = 0) {
-    gather_one(id_, order, threads, room);
-    gather_one(kind_, order, threads, room);
-    gather_one(pos_, order, threads, room);
-    gather_one(vel_, order, threads, room);
-    gather_one(omega_, order, threads, room);
-    gather_one(radius_, order, threads, room);
-    gather_one(mass_, order, threads, room);
-    gather_one(inv_mass_, order, threads, room);
+  // `threads` share the copying (the result is the same for any count).
+  void gather(std::span<const std::uint32_t> order, int threads = 1) {
+    gather_one(id_, order, threads);
+    gather_one(kind_, order, threads);
+    gather_one(pos_, order, threads);
+    gather_one(vel_, order, threads);
+    gather_one(omega_, order, threads);
+    gather_one(radius_, order, threads);
+    gather_one(mass_, order, threads);
+    gather_one(inv_mass_, order, threads);
+  }
+
+  // Keeping only the grains `keep` (increasing indices) without reordering them all: each kept
+  // grain beyond the first keep.size() places fills a dropped grain's place there, so a store
+  // that drops few grains moves few (a domain decomposition's rebuild, whose cell sort orders
+  // them after). compaction() lists the moves (from, to); compact() applies them and leaves room
+  // for `room` grains about to be added, so that adding them copies no array.
+  using Moves = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+  static Moves compaction(std::span<const std::uint32_t> keep) {
+    const auto kept = static_cast<std::uint32_t>(keep.size());
+    const auto in_place =
+        static_cast<std::size_t>(std::lower_bound(keep.begin(), keep.end(), kept) - keep.begin());
+    Moves moves;
+    moves.reserve(kept - in_place);
+    std::size_t k = 0, source = in_place;
+    for (std::uint32_t place = 0; source < kept; ++place) {
+      if (k < in_place && keep[k] == place) {
+        ++k;
+        continue;
+      }
+      moves.emplace_back(keep[source++], place);
+    }
+    return moves;
+  }
+  void compact(const Moves& moves, std::size_t kept, std::size_t room) {
+    compact_one(id_, moves, kept, room);
+    compact_one(kind_, moves, kept, room);
+    compact_one(pos_, moves, kept, room);
+    compact_one(vel_, moves, kept, room);
+    compact_one(omega_, moves, kept, room);
+    compact_one(radius_, moves, kept, room);
+    compact_one(mass_, moves, kept, room);
+    compact_one(inv_mass_, moves, kept, room);
+  }
+  template <class T>
+  static void compact_one(std::vector<T>& values, const Moves& moves, std::size_t kept,
+                          std::size_t room) {
+    for (const auto& [from, to] : moves) values[to] = values[from];
+    values.resize(kept);
+    values.reserve(kept + room);
   }
 
   template <class T>
   static void gather_one(std::vector<T>& values, std::span<const std::uint32_t> order,
-                         int threads = 1, std::size_t room = 0) {
-    std::vector<T> out;
-    out.reserve(order.size() + room);
-    out.resize(order.size());
+                         int threads = 1) {
+    std::vector<T> out(order.size());
     const auto n = static_cast<std::int64_t>(order.size());
     // Each thread writes (and so first touches) the stretch of the new order it will own.
 #pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)

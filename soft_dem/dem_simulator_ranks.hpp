@@ -130,15 +130,18 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   for (const HistoryRecord<D>& r : domain.move(history_to))
     history.push_back({r.a, r.b, get<D, Vec<D>>(r.shear)});
 
+  // The kept grains stay in place or fill a dropped grain's (the rebuild's cell sort orders
+  // them after), and the arrivals follow them.
   for (GrainId id : p_.id()) index_of_id_[id] = kRemoved;
-  const std::size_t room = arrived.size();
-  p_.gather(keep, threads_, room);
-  Particles<D>::gather_one(force_prev_, keep, threads_, room);
-  Particles<D>::gather_one(torque_prev_, keep, threads_, room);
-  Particles<D>::gather_one(inv_inertia_, keep, threads_, room);
-  if (plate_) plate_->gather(keep, room);
-  owned_ = std::move(keep_owned);
-  owned_.reserve(owned_.size() + room);
+  for (std::size_t k = 0; k < keep.size(); ++k) owned_[keep[k]] = keep_owned[k];
+  const typename Particles<D>::Moves moves = Particles<D>::compaction(keep);
+  const std::size_t kept = keep.size(), room = arrived.size();
+  p_.compact(moves, kept, room);
+  Particles<D>::compact_one(force_prev_, moves, kept, room);
+  Particles<D>::compact_one(torque_prev_, moves, kept, room);
+  Particles<D>::compact_one(inv_inertia_, moves, kept, room);
+  Particles<D>::compact_one(owned_, moves, kept, room);
+  if (plate_) plate_->compact(moves, kept, room);
   std::vector<Vec<D>>* shear = plate_ && plate_->keeps_shear() ? &plate_->shear() : nullptr;
   for (const GrainRecord<D>& g : arrived) {
     p_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);

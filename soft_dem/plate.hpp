@@ -92,8 +92,11 @@ class Plate : public PlateFace<D> {
   // reorders it with the grains and stores it in checkpoints.
   std::vector<Vec<D>>& shear() { return shear_; }
   const std::vector<Vec<D>>& shear() const { return shear_; }
-  void gather(std::span<const std::uint32_t> order, std::size_t room = 0) {
-    if (!shear_.empty()) Particles<D>::gather_one(shear_, order, 1, room);
+  void gather(std::span<const std::uint32_t> order) {
+    if (!shear_.empty()) Particles<D>::gather_one(shear_, order);
+  }
+  void compact(const typename Particles<D>::Moves& moves, std::size_t kept, std::size_t room) {
+    if (!shear_.empty()) Particles<D>::compact_one(shear_, moves, kept, room);
   }
 
  private:
