@@ -72,6 +72,12 @@ class BalancedSplit {
   }
 
   const std::vector<double>& cuts() const { return cut_; }
+  // The team's time on the loop at this pass, its shares' times summed (until rebalance).
+  double seconds() const {
+    double total = 0.0;
+    for (double s : seconds_) total += s;
+    return total;
+  }
 
  private:
   std::vector<double> cut_;      // fractions: cut_[0] = 0, cut_[threads] = 1, non-decreasing

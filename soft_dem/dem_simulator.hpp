@@ -114,7 +114,7 @@ class DemSimulator final : public Simulator<D> {
   // share of this rank's pass, for a re-cut of the parts (grain_weights(), when the balance looks
   // at this rebuild).
   void distribute(std::vector<History>& history, std::vector<double> weight);
-  std::vector<double> grain_weights() const;
+  std::vector<double> grain_weights();
   GrainRecord<D> record_of(std::size_t i) const;
   // The contacts of the last pass in this rank's own rows.
   std::int64_t own_contacts() const;
@@ -230,7 +230,8 @@ class DemSimulator final : public Simulator<D> {
   // forced_'s bit for a ghost: always pushed, so that no coasting loop counts its speed.
   static constexpr std::uint8_t kGhostBit = 4;
   WorkBalance balance_;
-  mutable Particles<D> whole_;  // particles() over ranks: all grains on rank 0, none elsewhere
+  double tether_seconds_ = 0.0;  // the tethers' part of the passes since the last look
+  mutable Particles<D> whole_;   // particles() over ranks: all grains on rank 0, none elsewhere
   mutable bool whole_fresh_ = false;
 };
 

@@ -326,10 +326,16 @@ double
 DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast) {
   classify_quiet_pairs();
   const auto tether_forces = [&] {
-    std::optional<PhaseProfile::Timer> tethering;
-    if (team_index() == 0) tethering.emplace(&this->profile(), phase_.tethers);
-    wall_.add_forces_share(
-        p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+    const auto start = std::chrono::steady_clock::now();
+    {
+      std::optional<PhaseProfile::Timer> tethering;
+      if (team_index() == 0) tethering.emplace(&this->profile(), phase_.tethers);
+      wall_.add_forces_share(
+          p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+    }
+    const double seconds = seconds_since(start);  // summed over the team, as the loops' are
+#pragma omp atomic
+    tether_seconds_ += seconds;
   };
   const auto n = static_cast<std::int64_t>(p_.size());
   // The plate's forces, after the contacts': the same sum order for any thread count. Each

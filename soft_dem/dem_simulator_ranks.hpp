@@ -14,21 +14,44 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/merge_runs.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/loop_weights.hpp"
 
 namespace granjet::dem {
 
-// Each grain's share of a rank's pass: its update, and the pairs of its row that the pass tests
-// (the quiet pairs it skips cost next to nothing). Read off the last pass's list.
+// Each grain's share of this rank's passes since the last look (soft_dem/loop_weights.hpp):
+// the distance tests over the tested pairs, the contacts' join and evaluation over the contacts
+// (a pair counts half to each of its grains), the advance over the pushed grains, the tethers
+// over the target's grains, as the last pass listed them; the rest (the loop over all grains,
+// Verlet's predictor, the plate) evenly. Ghosts share in the counts (their pairs are this
+// rank's work) and are weighed 0 by distribute().
 template <int D, class Law, bool kMono, class Space>
-std::vector<double> DemSimulator<D, Law, kMono, Space>::grain_weights() const {
-  std::vector<double> weight(p_.size(), 1.0);
-  if (pairs_.first.size() != p_.size() + 1) return weight;  // before the first list
-  for (std::uint32_t k : quiet_.tested()) weight[pair_row_[k]] += 1.0;
-  return weight;
+std::vector<double> DemSimulator<D, Law, kMono, Space>::grain_weights() {
+  const typename Pass::LoopSeconds loops = pass_.take_loop_seconds();
+  const double tethers = std::exchange(tether_seconds_, 0.0);
+  const std::size_t n = p_.size();
+  if (n == 0 || pairs_.first.size() != n + 1) return std::vector<double>(n, 1.0);  // no list yet
+  std::vector<double> pairs(n, 0.0), contacts(n, 0.0), pushed(n, 0.0), wall(n, 0.0);
+  for (std::uint32_t k : quiet_.tested()) {
+    pairs[pair_row_[k]] += 0.5;
+    pairs[pairs_.partner[k]] += 0.5;
+  }
+  for (std::uint32_t k : pass_.history().pairs()) {
+    contacts[pair_row_[k]] += 0.5;
+    contacts[pairs_.partner[k]] += 0.5;
+  }
+  const auto kind = p_.kind();
+  for (std::size_t i = 0; i < n; ++i) {
+    wall[i] = tethered_ && kind[i] == GrainKind::kWall;
+    pushed[i] = (forced_[i] & 3) != 0 || wall[i] > 0.0;  // as ForcePass::update_share lists them
+  }
+  const std::vector<TimedLoop> timed{
+      {loops.pairs, pairs}, {loops.contacts, contacts}, {loops.pushed, pushed}, {tethers, wall}};
+  return spread_loop_times(threads_ * balance_.work(), n, timed);
 }
 
 template <int D, class Law, bool kMono, class Space>

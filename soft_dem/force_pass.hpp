@@ -79,6 +79,16 @@ class ForcePass {
     phase_.update = profile_->phase("grains: update", Kind::kParallel);
   }
 
+  // What the passes' loops over listed items took since the last take (each loop's threads'
+  // times summed): the pairs tested (phase 1's distance test), the contacts (phase 1's join and
+  // carry-over, 2 and 3) and the pushed grains (phase 4's advance); the loop over all grains is
+  // not among them. Over MPI ranks they weigh each grain's share of a rank's pass
+  // (DemSimulator::grain_weights).
+  struct LoopSeconds {
+    double pairs = 0.0, contacts = 0.0, pushed = 0.0;
+  };
+  LoopSeconds take_loop_seconds() { return std::exchange(loop_seconds_, {}); }
+
   // The listed pairs in contact at the last evaluation and their history.
   History& history() { return history_; }
   const History& history() const { return history_; }
@@ -143,6 +153,9 @@ class ForcePass {
     }
     timing.reset();
     history_.finish_carry(found_pair_);
+    loop_seconds_.pairs += split_test_.seconds();
+    loop_seconds_.contacts += split_join_.seconds() + split_contacts_.seconds();
+    loop_seconds_.pushed += split_advance_.seconds();
     split_test_.rebalance(profile_, phase_.test);
     split_join_.rebalance(profile_, phase_.test);
     split_contacts_.rebalance(profile_, phase_.forces);
@@ -436,6 +449,7 @@ class ForcePass {
   std::vector<std::vector<std::uint32_t>> pushed_grains_;
   // How each shared loop is split among the threads, balanced by the times of the last pass.
   BalancedSplit split_test_, split_join_, split_contacts_, split_coast_, split_advance_;
+  LoopSeconds loop_seconds_;
 };
 
 }  // namespace granjet::dem

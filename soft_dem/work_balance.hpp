@@ -73,6 +73,8 @@ class WorkBalance {
     return work;
   }
 
+  // This rank's work since the last look.
+  double work() const { return work_; }
   double imbalance() const { return mean_ > 0.0 ? busiest_ / mean_ : 1.0; }
   std::int64_t recuts() const { return recuts_; }
 

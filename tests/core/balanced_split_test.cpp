@@ -91,5 +91,16 @@ TEST(BalancedSplit, KeepsItsCutsWithoutTimes) {
   EXPECT_DOUBLE_EQ(split.cuts()[2], 2.0 / 3.0);
 }
 
+TEST(BalancedSplit, SumsTheTeamsTimeUntilItRebalances) {
+  BalancedSplit split(3);
+  split.record(0, 1.5);
+  split.record(2, 0.25);
+  split.record(1, 0.5);
+  split.record(1, 0.75);  // a thread's slot holds its latest time
+  EXPECT_DOUBLE_EQ(split.seconds(), 2.5);
+  split.rebalance();
+  EXPECT_DOUBLE_EQ(split.seconds(), 0.0);
+}
+
 }  // namespace
 }  // namespace granjet
