@@ -129,6 +129,19 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
 }
 
 template <int D>
+SampleRegion FieldAccumulator<D>::reach() const {
+  const BinGrid& grid = coords_.grid();
+  const double half = 0.5 * grid.lateral_width();  // the half-cells' overhang
+  SampleRegion region;
+  // |lateral| is the distance from the jet axis in either geometry (3D r, 2D |y|).
+  region.within = std::max(std::abs(grid.lateral_edge(0) - half),
+                           std::abs(grid.lateral_edge(grid.lateral_bins()) + half));
+  region.low = spec_.height_origin;
+  region.high = spec_.height_origin + grid.top();
+  return region;
+}
+
+template <int D>
 Table FieldAccumulator<D>::layout() const {
   const BinGrid& grid = coords_.grid();
   Table t(grid.size());

@@ -32,6 +32,7 @@
 #include "analysis/table.hpp"
 #include "analysis/velocity_distribution.hpp"
 #include "core/particles.hpp"
+#include "core/sample_region.hpp"
 #include "core/simulator.hpp"
 
 namespace granjet::analysis {
@@ -57,6 +58,9 @@ class FieldAccumulator {
   explicit FieldAccumulator(const BinSpec& spec);
 
   const Coordinates& coordinates() const { return coords_; }
+  // The cylinder (3D; 2D the strip) about the jet axis that a grain or transfer must reach into
+  // to count in sample(): the bins and the half-cells beyond their lateral ends.
+  SampleRegion reach() const;
   // Adds one snapshot and the transfers of the `elapsed` time before it. The first snapshot of a
   // window comes with no transfers and elapsed = 0 (earlier transfers are outside the window).
   void sample(const Particles<D>& particles, std::span<const PairImpulse<D>> transfers,

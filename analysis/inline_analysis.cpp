@@ -26,16 +26,16 @@ void InlineAnalysis<D>::observe(Simulator<D>& sim) {
   if (!analysis_.due(sim.time())) return;
   const auto start = std::chrono::steady_clock::now();
   // Only the window's samples use transfers, each those since the previous sample: the window's
-  // first sample starts the count, and outside the window none is gathered (over ranks, every
-  // contact to rank 0) nor recorded (the event-driven backend's every impulse).
+  // first sample starts the count, and outside the window none is gathered (over ranks, the
+  // contacts to rank 0) nor recorded (the event-driven backend's every impulse). Over ranks
+  // only what the sample looks at comes to rank 0: the scattered grains, and in the window
+  // the grains and contacts at the bins.
   const bool counted = analysis_.in_window(sim.time());
   sim.record_transfers(counted);
   transfers_.clear();
-  if (counted) sim.collect_transfers(transfers_);
-  // Outside the window only the scattered grains count (RunAnalysis::take).
-  analysis_.sample(sim.time(),
-                   counted ? sim.particles() : sim.particles_beyond(analysis_.scatter_radius()),
-                   transfers_);
+  const SampleRegion region = analysis_.sample_region(sim.time());
+  if (counted) sim.collect_transfers_in(transfers_, region);
+  analysis_.sample(sim.time(), sim.particles_in(region), transfers_);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

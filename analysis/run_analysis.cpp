@@ -92,6 +92,13 @@ bool RunAnalysis<D>::in_window(double time) const {
 }
 
 template <int D>
+SampleRegion RunAnalysis<D>::sample_region(double time) const {
+  SampleRegion region = in_window(time) ? fields_.reach() : SampleRegion{};
+  region.beyond = config_.scatter_radius;
+  return region;
+}
+
+template <int D>
 void RunAnalysis<D>::sample(double time, const Particles<D>& particles,
                             std::span<const PairImpulse<D>> transfers) {
   take(time, particles, transfers, true);

@@ -26,6 +26,7 @@
 #include "analysis/scattering.hpp"
 #include "analysis/table.hpp"
 #include "core/particles.hpp"
+#include "core/sample_region.hpp"
 #include "core/scene.hpp"
 #include "core/simulator.hpp"
 
@@ -87,8 +88,10 @@ class RunAnalysis {
   double next_sample_time() const { return next_; }
   bool due(double time) const { return time >= next_ - 1e-9 * config_.sample_interval; }
   bool in_window(double time) const;
-  // Outside the window a sample looks only at the grains beyond this distance from the jet axis.
-  double scatter_radius() const { return config_.scatter_radius; }
+  // What a sample at `time` looks at (Simulator::particles_in, collect_transfers_in): the
+  // grains beyond the scatter radius and, inside the window, every grain and transfer that
+  // reaches into the bins.
+  SampleRegion sample_region(double time) const;
   // `transfers`: everything collect_transfers returned since the previous sample (they may be
   // left empty outside the window, where they are not used).
   void sample(double time, const Particles<D>& particles,

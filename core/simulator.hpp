@@ -11,6 +11,7 @@
 
 #include "core/particles.hpp"
 #include "core/phase_profile.hpp"
+#include "core/sample_region.hpp"
 #include "core/state_archive.hpp"
 
 namespace granjet {
@@ -88,16 +89,21 @@ class Simulator {
   virtual void advance_to(double t) = 0;
   virtual double time() const = 0;
   virtual const Particles<D>& particles() const = 0;
-  // At least the grains farther than `radius` from the jet axis (kJetAxis), in particles()'s
-  // order: a look that needs only those (the scattered grains) need not gather the rest over
-  // MPI ranks. Without ranks, and by default, particles() itself.
-  virtual const Particles<D>& particles_beyond(double radius) const {
-    (void)radius;
+  // At least the grains `region` holds (core/sample_region.hpp), in particles()'s order: a look
+  // that needs only those need not gather the rest over MPI ranks. Without ranks, and by
+  // default, particles() itself.
+  virtual const Particles<D>& particles_in(const SampleRegion& region) const {
+    (void)region;
     return particles();
   }
   // Appends the momentum transfers since the last call (soft DEM: the current pair forces
   // times the time since the last call, a sampled estimate; event-driven: every impulse).
   virtual void collect_transfers(std::vector<PairImpulse<D>>& out) = 0;
+  // At least those of them that `region` holds, in collect_transfers' order; by default all.
+  virtual void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) {
+    (void)region;
+    collect_transfers(out);
+  }
   // Backends that must record transfers as they happen (event-driven: every collision impulse)
   // keep them only while asked to, so a run that never collects them does not hoard memory.
   // Time-stepped backends sample on demand and ignore this.

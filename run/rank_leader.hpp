@@ -14,6 +14,7 @@
 
 #include "core/errors.hpp"
 #include "core/rank_team.hpp"
+#include "core/sample_region.hpp"
 #include "core/simulator.hpp"
 #include "core/state_archive.hpp"
 
@@ -22,8 +23,9 @@ namespace granjet {
 enum class RankOrder : int {
   kAdvance,
   kParticles,
-  kParticlesBeyond,
+  kParticlesIn,
   kTransfers,
+  kTransfersIn,
   kStats,
   kForces,
   kEnergy,
@@ -35,7 +37,8 @@ enum class RankOrder : int {
 
 struct RankCall {
   RankOrder order = RankOrder::kDone;
-  double value = 0.0;  // advance_to's time, particles_beyond's radius
+  double value = 0.0;   // advance_to's time
+  SampleRegion region;  // particles_in's and collect_transfers_in's
 };
 
 // Each rank's row, on rank 0 in rank order (none elsewhere). Collective.
@@ -58,7 +61,7 @@ class RankLeader final : public Simulator<D> {
  public:
   RankLeader(std::unique_ptr<Simulator<D>> sim, RankTeam ranks)
       : sim_(std::move(sim)), ranks_(ranks) {}
-  ~RankLeader() override { call({RankOrder::kDone}); }
+  ~RankLeader() override { call(RankOrder::kDone); }
   RankLeader(const RankLeader&) = delete;
   RankLeader& operator=(const RankLeader&) = delete;
 
@@ -70,49 +73,56 @@ class RankLeader final : public Simulator<D> {
   const PhaseProfile& profile() const override { return sim_->profile(); }
 
   void advance_to(double t) override {
-    call({RankOrder::kAdvance, t});
+    call(RankOrder::kAdvance, t);
     sim_->advance_to(t);
   }
   const Particles<D>& particles() const override {
-    call({RankOrder::kParticles});
+    call(RankOrder::kParticles);
     return sim_->particles();
   }
-  const Particles<D>& particles_beyond(double radius) const override {
-    call({RankOrder::kParticlesBeyond, radius});
-    return sim_->particles_beyond(radius);
+  const Particles<D>& particles_in(const SampleRegion& region) const override {
+    call(RankOrder::kParticlesIn, 0.0, region);
+    return sim_->particles_in(region);
   }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override {
-    call({RankOrder::kTransfers});
+    call(RankOrder::kTransfers);
     sim_->collect_transfers(out);
   }
+  void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) override {
+    call(RankOrder::kTransfersIn, 0.0, region);
+    sim_->collect_transfers_in(out, region);
+  }
   SimStats stats() const override {
-    call({RankOrder::kStats});
+    call(RankOrder::kStats);
     return sim_->stats();
   }
   void sample_forces(ForceSample<D>& out) const override {
-    call({RankOrder::kForces});
+    call(RankOrder::kForces);
     sim_->sample_forces(out);
   }
   EnergyBalance energy() const override {
-    call({RankOrder::kEnergy});
+    call(RankOrder::kEnergy);
     return sim_->energy();
   }
   void checkpoint(StateArchive& out) override {
-    call({RankOrder::kCheckpoint});
+    call(RankOrder::kCheckpoint);
     sim_->checkpoint(out);
   }
   // The followers restore the archive they were given (the same file).
   void restore(const StateArchive& in) override {
-    call({RankOrder::kRestore});
+    call(RankOrder::kRestore);
     sim_->restore(in);
   }
   std::vector<std::vector<double>> phase_seconds_by_rank() const override {
-    call({RankOrder::kProfile});
+    call(RankOrder::kProfile);
     return rows_on_rank0(ranks_, sim_->profile().phase_seconds());
   }
 
  private:
-  void call(RankCall c) const { ranks_.broadcast(c); }
+  void call(RankOrder order, double value = 0.0, const SampleRegion& region = {}) const {
+    RankCall c{order, value, region};
+    ranks_.broadcast(c);
+  }
 
   std::unique_ptr<Simulator<D>> sim_;
   RankTeam ranks_;
@@ -135,12 +145,17 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       case RankOrder::kParticles:
         sim.particles();
         break;
-      case RankOrder::kParticlesBeyond:
-        sim.particles_beyond(c.value);
+      case RankOrder::kParticlesIn:
+        sim.particles_in(c.region);
         break;
       case RankOrder::kTransfers: {
         std::vector<PairImpulse<D>> ignored;
         sim.collect_transfers(ignored);
+        break;
+      }
+      case RankOrder::kTransfersIn: {
+        std::vector<PairImpulse<D>> ignored;
+        sim.collect_transfers_in(ignored, c.region);
         break;
       }
       case RankOrder::kStats:

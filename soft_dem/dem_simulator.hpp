@@ -51,8 +51,9 @@ class DemSimulator final : public Simulator<D> {
   void advance_to(double t) override;
   double time() const override { return static_cast<double>(step_) * dt_; }
   const Particles<D>& particles() const override;
-  const Particles<D>& particles_beyond(double radius) const override;
+  const Particles<D>& particles_in(const SampleRegion& region) const override;
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
+  void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) override;
   SimStats stats() const override;
   bool has_contact_forces() const override { return true; }
   void sample_forces(ForceSample<D>& out) const override;
@@ -94,9 +95,8 @@ class DemSimulator final : public Simulator<D> {
   std::vector<History> histories() const;
   void rebuild();
   void rebuild(std::vector<History> history);
-  // Over ranks: the grains farther than sqrt(beyond2) from the jet axis into whole_ on rank 0
-  // (all for a negative beyond2). Collective.
-  void gather_whole(double beyond2) const;
+  // Over ranks: the grains `region` holds (all for none) into whole_ on rank 0. Collective.
+  void gather_whole(const SampleRegion* region) const;
   // Over ranks: the cell frame of all grains (CellGrid::Frame) for pairs of reach `cut`, and a
   // value combined over the ranks.
   typename CellGrid<D>::Frame whole_frame(double cut) const;
@@ -155,7 +155,9 @@ class DemSimulator final : public Simulator<D> {
   // tethers, the clocks and counters.
   void put_histories_and_counters(StateArchive& a, const std::vector<GrainId>& pair,
                                   const std::vector<Vec<D>>& shear, const SimStats& stats) const;
-  void collect_transfers_over_ranks(std::vector<PairImpulse<D>>& out, double elapsed) const;
+  // Those `region` holds (all for none).
+  void collect_transfers_over_ranks(std::vector<PairImpulse<D>>& out, double elapsed,
+                                    const SampleRegion* region) const;
   // out.total holds a zero per grain held here.
   void sample_forces_over_ranks(ForceSample<D>& out) const;
   bool over_ranks() const { return domain_.has_value(); }

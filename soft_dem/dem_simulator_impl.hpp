@@ -762,7 +762,7 @@ template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpulse<D>>& out) {
   const double elapsed = time() - last_collect_time_;
   last_collect_time_ = time();
-  if (over_ranks()) return collect_transfers_over_ranks(out, elapsed);
+  if (over_ranks()) return collect_transfers_over_ranks(out, elapsed, nullptr);
   const auto x = p_.position();
   const auto id = p_.id();
   // Runs of rows with as many listed pairs each, taken by the threads as they come free (the
@@ -798,6 +798,16 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers(std::vector<PairImpul
   });
 }
 
+// One rank lists them all: no gather to save.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::collect_transfers_in(std::vector<PairImpulse<D>>& out,
+                                                              const SampleRegion& region) {
+  if (!over_ranks()) return collect_transfers(out);
+  const double elapsed = time() - last_collect_time_;
+  last_collect_time_ = time();
+  collect_transfers_over_ranks(out, elapsed, &region);
+}
+
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) const {
   const auto id = p_.id();
@@ -831,27 +841,25 @@ template <int D, class Law, bool kMono, class Space>
 const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles() const {
   if (!over_ranks()) return p_;
   if (!whole_fresh_) {
-    gather_whole(-1.0);
+    gather_whole(nullptr);
     whole_fresh_ = true;
   }
   return whole_;
 }
 
-// Over ranks whole_ then holds only those grains (not the whole: whole_fresh_ stays false), and
-// a few more: the bound is loosened by a relative 1e-9, so that at the edge the caller's own
-// test decides.
+// Over ranks whole_ then holds only those grains (not the whole: whole_fresh_ stays false).
 template <int D, class Law, bool kMono, class Space>
-const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles_beyond(double radius) const {
-  if (!over_ranks() || whole_fresh_ || !(radius > 0.0)) return particles();
-  const double beyond = radius * (1.0 - 1e-9);
-  gather_whole(beyond * beyond);
+const Particles<D>& DemSimulator<D, Law, kMono, Space>::particles_in(
+    const SampleRegion& region) const {
+  if (!over_ranks() || whole_fresh_) return particles();
+  gather_whole(&region);
   return whole_;
 }
 
-// Every grain farther than sqrt(beyond2) from the jet axis (a NaN position too) into whole_ on
-// rank 0, in the order one rank holds them; a negative beyond2 gathers all.
+// The grains `region` holds (all for none) into whole_ on rank 0, in the order one rank holds
+// them.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::gather_whole(double beyond2) const {
+void DemSimulator<D, Law, kMono, Space>::gather_whole(const SampleRegion* region) const {
   struct Grain {  // what Particles holds of a grain
     GrainId id;
     GrainKind kind;
@@ -860,9 +868,9 @@ void DemSimulator<D, Law, kMono, Space>::gather_whole(double beyond2) const {
   whole_.clear();  // its memory stays: each sample refills it
   for_each_in_whole_order<Grain>(
       [&](std::size_t i, auto emit) {
-        Vec<D> across = p_.position()[i];
-        across[kJetAxis<D>] = 0.0;
-        if (across.squaredNorm() <= beyond2) return;
+        if (region != nullptr &&
+            !region->holds_grain<D>(p_.position()[i], p_.radius()[i], p_.kind()[i]))
+          return;
         Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, p_.radius()[i], p_.mass()[i]};
         put<D>(g.x, p_.position()[i]);
         put<D>(g.v, p_.velocity()[i]);

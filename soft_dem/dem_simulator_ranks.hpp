@@ -459,7 +459,7 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
 
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
-    std::vector<PairImpulse<D>>& out, double elapsed) const {
+    std::vector<PairImpulse<D>>& out, double elapsed, const SampleRegion* region) const {
   constexpr int N = 2 + 3 * D;
   const auto x = p_.position();
   const auto id = p_.id();
@@ -480,9 +480,11 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
         for_each_contact_of(
             i,
             [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+              const Vec<D> at_j = x[i] - space_.separation(x[i], x[j]);
+              if (region != nullptr && !region->holds_transfer<D>(x[i], at_j)) return;
               Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
               const Vec<D> f = law_.force(g, v_rel, shear);
-              emit(row_of(id[i], id[j], x[i], x[i] - space_.separation(x[i], x[j]), elapsed * f));
+              emit(row_of(id[i], id[j], x[i], at_j, elapsed * f));
             },
             [](std::uint32_t) {});
       },
@@ -493,8 +495,10 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
           plate_->contact(
               x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
               [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+                const Vec<D> image = plate_->mirror(x[i]);
+                if (region != nullptr && !region->holds_transfer<D>(x[i], image)) return;
                 const Vec<D> f = plate_->force(i, g, v_rel);
-                emit(row_of(id[i], kPlateId, x[i], plate_->mirror(x[i]), elapsed * f));
+                emit(row_of(id[i], kPlateId, x[i], image, elapsed * f));
               },
               [] {});
         },

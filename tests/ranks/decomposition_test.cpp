@@ -7,6 +7,7 @@
 // and the work balance that decides when to cut them anew.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -19,6 +20,7 @@
 #include "core/jet_geometry.hpp"
 #include "core/rank_team.hpp"
 #include "core/recursive_bisection.hpp"
+#include "core/sample_region.hpp"
 #include "core/state_archive.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
@@ -207,10 +209,12 @@ TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
   }
 }
 
-// A look at the grains beyond a distance from the jet axis (the analysis outside its window)
-// gets on rank 0 exactly the one-rank run's grains beyond it, in its order, and nothing
-// elsewhere; particles() afterwards is the whole again.
-TEST(Ranks, GrainsBeyondARadiusAreTheOneRankRunsGrainsBeyondIt) {
+// A look at part of the run (an analysis sample, core/sample_region.hpp) gets on rank 0 exactly
+// the one-rank run's grains and transfers that the region holds, in its order, and nothing
+// elsewhere; particles() afterwards is the whole again. First the grains beyond a distance from
+// the jet axis (outside the analysis window), then those and the contacts in a cylinder about
+// it, cut across the jet's front (the window's bins).
+TEST(Ranks, ASampleRegionGetsTheOneRankRunsGrainsAndTransfersInIt) {
   const RankTeam world = RankTeam::world();
   const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
                                  {"jet.grains=2000", "wall.diameter=14"});
@@ -218,24 +222,54 @@ TEST(Ranks, GrainsBeyondARadiusAreTheOneRankRunsGrainsBeyondIt) {
   auto spread = dem::make_dem_simulator<3>(scene, world);
   one->advance_to(3.0);
   spread->advance_to(3.0);
-  const double radius = 4.0;
   const Particles<3>& whole = one->particles();
   const auto across = [](Vec<3> x) {
     x[kJetAxis<3>] = 0.0;
     return x.norm();
   };
-  std::vector<std::uint32_t> beyond;
+  const auto expect_held = [&](const SampleRegion& region, const std::string& what) {
+    std::vector<std::uint32_t> held;
+    for (std::uint32_t i = 0; i < whole.size(); ++i)
+      if (region.holds_grain<3>(whole.position()[i], whole.radius()[i], whole.kind()[i]))
+        held.push_back(i);
+    ASSERT_GT(held.size(), 10u) << what;
+    ASSERT_LT(held.size(), whole.size() * 3 / 4) << what;
+    Particles<3> expected = whole;
+    expected.gather(held, 1);
+    expect_whole_on_rank0(raw_state(expected), raw_state(spread->particles_in(region)), what);
+  };
+  const double radius = 4.0;
   for (std::uint32_t i = 0; i < whole.size(); ++i) {
     const double r = across(whole.position()[i]);
     ASSERT_FALSE(r > radius * (1.0 - 1e-6) && r <= radius) << "a grain on the edge: move it";
-    if (r > radius) beyond.push_back(i);
   }
-  ASSERT_GT(beyond.size(), 10u);
-  ASSERT_LT(beyond.size(), whole.size() / 2);
-  Particles<3> expected = whole;
-  expected.gather(beyond, 1);
-  expect_whole_on_rank0(raw_state(expected), raw_state(spread->particles_beyond(radius)),
-                        "the grains beyond r = 4");
+  expect_held({.beyond = radius}, "the grains beyond r = 4");
+
+  double front = INFINITY;  // the lowest jet grain
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    if (whole.kind()[i] == GrainKind::kFree)
+      front = std::min(front, whole.position()[i][kJetAxis<3>]);
+  const SampleRegion cylinder{.within = 2.5, .low = front - 1.0, .high = front + 1.5};
+  expect_held(cylinder, "the grains at the front");
+  std::vector<PairImpulse<3>> all, expected, got;
+  one->collect_transfers_in(all, cylinder);
+  spread->collect_transfers_in(got, cylinder);
+  for (const PairImpulse<3>& t : all)
+    if (cylinder.holds_transfer<3>(t.position_i, t.position_j)) expected.push_back(t);
+  ASSERT_GT(expected.size(), 10u);
+  ASSERT_LT(expected.size(), all.size());
+  if (!on_rank0()) {
+    EXPECT_TRUE(got.empty());
+  } else {
+    ASSERT_EQ(expected.size(), got.size());
+    for (std::size_t c = 0; c < got.size(); ++c) {
+      EXPECT_EQ(expected[c].i, got[c].i);
+      EXPECT_EQ(expected[c].j, got[c].j);
+      EXPECT_EQ(expected[c].position_i, got[c].position_i);
+      EXPECT_EQ(expected[c].position_j, got[c].position_j);
+      EXPECT_EQ(expected[c].impulse, got[c].impulse);
+    }
+  }
   expect_whole_on_rank0(raw_state(whole), raw_state(spread->particles()), "then all grains");
 }
 
