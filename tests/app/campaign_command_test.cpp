@@ -254,10 +254,13 @@ TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
   ASSERT_TRUE(killed) << "the run ended before it could be killed";
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
-  EXPECT_EQ(manifest(hit)["runs"]["jet3d/jet3d.seed1"]["status"], "complete");
+  const nlohmann::json entry = manifest(hit)["runs"]["jet3d/jet3d.seed1"];
+  EXPECT_EQ(entry["status"], "complete");
   std::ifstream log(hit / "jet3d" / "jet3d.seed1.log");
   const std::string logged{std::istreambuf_iterator<char>(log), {}};
-  EXPECT_NE(logged.find("continuing "), std::string::npos) << "resumed, not run again";
+  EXPECT_NE(logged.find("continuing "), std::string::npos)
+      << "resumed, not run again; its log:\n"
+      << logged << "its manifest entry: " << entry.dump();
   expect_same_jet3d(straight, hit);
 }
 
