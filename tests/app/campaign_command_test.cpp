@@ -98,7 +98,9 @@ class CampaignCommand : public CommandTest {
   }
   static void expect_same_jet3d(const fs::path& a, const fs::path& b) {
     for (const char* f : {"jet3d.seed1.h5", "jet3d.seed2.h5", "jet3d.h5"})
-      EXPECT_TRUE(same_hdf5(a / "jet3d" / f, b / "jet3d" / f)) << f;
+      EXPECT_TRUE(same_hdf5(a / "jet3d" / f, b / "jet3d" / f))
+          << f << ":\n"
+          << hdf5_differences(a / "jet3d" / f, b / "jet3d" / f);
   }
 };
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,6 +50,19 @@ class CommandTest : public ::testing::Test {
     std::string cmd = std::string(GRANJET_H5DIFF) + " -q " + a.string() + " " + b.string();
     if (!object.empty()) cmd += " " + object + " " + object;
     return std::system(cmd.c_str()) == 0;
+  }
+  // What h5diff says of two files, its first lines: for a failure's message.
+  static std::string hdf5_differences(const std::filesystem::path& a,
+                                      const std::filesystem::path& b) {
+    const std::string cmd =
+        std::string(GRANJET_H5DIFF) + " " + a.string() + " " + b.string() + " 2>&1 | head -n 20";
+    std::string said;
+    if (FILE* pipe = popen(cmd.c_str(), "r")) {
+      char line[512];
+      while (std::fgets(line, sizeof line, pipe) != nullptr) said += line;
+      pclose(pipe);
+    }
+    return said;
   }
   nlohmann::json summary(const std::string& name) const {
     std::ifstream in(dir_ / name);
