@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <new>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
+#include "analysis/checkpoint_file.hpp"
 #include "analysis/hdf5_handle.hpp"
 
 namespace granjet::analysis {
@@ -19,10 +21,6 @@ constexpr const char* kParameters = "/parameters/granjet";
 constexpr const char* kScene = "/parameters/granjet/scene";
 constexpr const char* kRequestedScene = "/parameters/granjet/requested_scene";
 constexpr const char* kMembers = "/parameters/granjet/members";
-// The checkpoint, and the one that replaces it (H5mdFile::write_checkpoint).
-constexpr const char* kCheckpoint = "/checkpoint";
-constexpr const char* kFreshCheckpoint = "/checkpoint.new";
-constexpr const char* kCheckpointTime = "/app/time";  // below them: run_command's checkpoints
 constexpr const char* kFrameStep = "/particles/all/position/step";
 constexpr const char* kFrameTime = "/particles/all/position/time";
 constexpr const char* kFrameGrains = "/observables/frame_grains/value";
@@ -86,51 +84,6 @@ class H5mdInput {
       if (H5Lexists(file_.get(), name.substr(0, slash).c_str(), H5P_DEFAULT) <= 0) return false;
       if (slash == std::string::npos) return true;
     }
-  }
-
-  // Every dataset under `group_name` (a checkpoint), by its path below it.
-  StateArchive checkpoint(const std::string& group_name) const {
-    struct Visit {
-      const H5mdInput* in;
-      std::vector<std::string> names;
-    } visit{this, {}};
-    const H5Handle group = ctx_.own(H5Gopen2(file_.get(), group_name.c_str(), H5P_DEFAULT),
-                                    H5Gclose, "open", group_name);
-    ctx_.check(H5Ovisit(
-                   group.get(), H5_INDEX_NAME, H5_ITER_INC,
-                   [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
-                     if (info->type == H5O_TYPE_DATASET)
-                       static_cast<Visit*>(data)->names.push_back(name);
-                     return 0;
-                   },
-                   &visit),
-               "list", group_name);
-    StateArchive archive;
-    for (const std::string& name : visit.names) {
-      const std::string path = group_name + "/" + name;
-      const H5Handle set =
-          ctx_.own(H5Dopen2(file_.get(), path.c_str(), H5P_DEFAULT), H5Dclose, "open", path);
-      const H5Handle type = ctx_.own(H5Dget_type(set.get()), H5Tclose, "query", path);
-      const H5Handle space = ctx_.own(H5Dget_space(set.get()), H5Sclose, "query", path);
-      const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-      if (n < 0) fail("count", path);
-      if (H5Tget_class(type.get()) == H5T_FLOAT) {
-        std::vector<double> values(n);
-        if (n > 0)
-          ctx_.check(
-              H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-              "read", path);
-        archive.put_reals(name, std::move(values));
-      } else {
-        std::vector<std::int64_t> values(n);
-        if (n > 0)
-          ctx_.check(
-              H5Dread(set.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-              "read", path);
-        archive.put_integers(name, std::move(values));
-      }
-    }
-    return archive;
   }
 
   std::string string_dataset(const char* name) const {
@@ -224,17 +177,11 @@ FileSummary read_summary(const std::filesystem::path& file) {
                                         "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
   if (in.exists(kRequestedScene)) summary.requested_scene_ini = in.string_dataset(kRequestedScene);
-  // As read_checkpoint reads it: /checkpoint, or a fresh one where a kill left none readable.
-  for (const char* checkpoint : {kCheckpoint, kFreshCheckpoint}) {
-    const std::string time = std::string(checkpoint) + kCheckpointTime;
-    try {
-      if (!in.exists(time)) continue;
-      summary.checkpoint_time = in.element<double>(time.c_str(), 0);
-    } catch (const std::exception&) {
-      continue;
+  if (summary.status != "complete") {
+    if (const std::optional<double> time = checkpoint_time(checkpoint_path(file))) {
+      summary.checkpoint = true;
+      summary.checkpoint_time = *time;
     }
-    summary.checkpoint = true;
-    break;
   }
   if (in.exists(kMembers)) {
     std::istringstream lines(in.string_dataset(kMembers));
@@ -250,25 +197,6 @@ FileSummary read_summary(const std::filesystem::path& file) {
     summary.last_step = in.element<std::int64_t>(kFrameStep, summary.frames - 1);
   }
   return summary;
-}
-
-StateArchive read_checkpoint(const std::filesystem::path& file, bool* from_fresh) {
-  const H5mdInput in(file);
-  const bool fresh = in.exists(kFreshCheckpoint);
-  if (from_fresh != nullptr) *from_fresh = false;
-  if (in.exists(kCheckpoint)) {
-    try {
-      return in.checkpoint(kCheckpoint);
-    } catch (const std::exception&) {  // its space reused before the kill: the fresh one holds
-      if (!fresh) throw;
-    }
-  } else if (!fresh) {
-    throw InputError(file.string(),
-                     "holds no checkpoint (a run older than its first "
-                     "run.checkpoint_interval, or not a granjet run)");
-  }
-  if (from_fresh != nullptr) *from_fresh = true;
-  return in.checkpoint(kFreshCheckpoint);
 }
 
 // A damaged or foreign file must not reach the analysis: it indexes by id and divides by radii.

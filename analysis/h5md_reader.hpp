@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/particles.hpp"
-#include "core/state_archive.hpp"
 
 namespace granjet::analysis {
 
@@ -29,18 +28,14 @@ struct FileSummary {
   std::string requested_scene_ini;  // where the backend adapted the scene; else empty
   // An ensemble file's member runs, relative to its directory; empty for a run's file.
   std::vector<std::string> members;
-  bool checkpoint = false;  // whether the file holds one (a .partial that can be resumed)
+  // Whether a run that is not complete has a readable checkpoint beside it (checkpoint_file.hpp):
+  // a .partial that can be resumed.
+  bool checkpoint = false;
   double checkpoint_time = 0.0;
 };
 
 // Throws std::runtime_error naming the file if it is not a granjet H5MD file.
 FileSummary read_summary(const std::filesystem::path& file);
-// The run state stored by the last checkpoint (H5mdWriter::write_checkpoint). Throws
-// InputError naming the file when it has none. A run killed while it replaced its checkpoint
-// may hold no readable /checkpoint beside a complete /checkpoint.new: that one is read then
-// (*from_fresh says so, where given).
-StateArchive read_checkpoint(const std::filesystem::path& file, bool* from_fresh = nullptr);
-
 // One stored frame, only its valid grains, sorted by id.
 template <int D>
 struct Frame {

@@ -11,9 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/checkpoint_file.hpp"
 #include "analysis/file_lock.hpp"
-#include "analysis/h5md_reader.hpp"
-#include "analysis/hdf5_copy.hpp"
 #include "analysis/hdf5_handle.hpp"
 #include "analysis/xdmf_sidecar.hpp"
 #include "core/plate_face.hpp"
@@ -63,8 +62,8 @@ class H5mdFile {
 
   H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dimension,
            std::size_t max_grains);
-  // Reopens a run's .partial at its checkpoint: frames and observables written after it are
-  // dropped, and the status is "running" again.
+  // Reopens a run's .partial at its checkpoint (checkpoint_file.hpp): frames and observables
+  // written after it are dropped, and the status is "running" again.
   H5mdFile(std::filesystem::path path, int dimension);
   void write_checkpoint(StateArchive archive);
   void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);
@@ -83,9 +82,6 @@ class H5mdFile {
   std::filesystem::path abandon(const std::string& reason);
 
  private:
-  void drop_checkpoints();
-  // /checkpoint.new, complete and flushed, becomes /checkpoint.
-  void promote_fresh_checkpoint();
   // An extendable dataset; extent is its current shape [rows, row shape...].
   struct Dataset {
     H5Handle handle;
@@ -196,6 +192,8 @@ H5mdFile::H5mdFile(std::filesystem::path path, const RunMetadata& meta, int dime
                                 ">: metadata says dimension " + std::to_string(meta.dimension));
   }
   lock_.emplace(ctx_.file());
+  // An earlier run's checkpoint would be resumed with this run's frames.
+  remove_checkpoint_file(checkpoint_path(path_));
   file_ = ctx_.own(H5Fcreate(ctx_.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                    H5Fclose, "create", "the HDF5 file");
   // Missing parent groups are created on the way, so every object is made by its full path.
@@ -343,13 +341,9 @@ void H5mdFile::write_string_dataset(const char* name, const std::string& value) 
 H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
     : path_(std::move(path)), ctx_(partial_path(path_)), dimension_(dimension) {
   lock_.emplace(ctx_.file());
-  bool from_fresh = false;  // read before the file is opened to write
-  const StateArchive checkpoint = read_checkpoint(ctx_.file(), &from_fresh);
+  const StateArchive checkpoint = read_checkpoint_file(checkpoint_path(path_));
   file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
                    "the HDF5 file");
-  // Killed while it replaced its checkpoint: the replacement is finished before anything else,
-  // or the next checkpoint would begin by deleting the only one left.
-  if (from_fresh) promote_fresh_checkpoint();
   link_props_ = ctx_.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
   ctx_.check(H5Pset_create_intermediate_group(link_props_.get(), 1), "set", "link properties");
   const std::string all = "/particles/all/", obs = "/observables/";
@@ -456,42 +450,14 @@ void H5mdFile::truncate(Dataset& set, hsize_t rows) {
   ctx_.check(H5Dset_extent(set.handle.get(), set.extent.data()), "truncate", set.name);
 }
 
-// /checkpoint.new takes every entry and is flushed, then replaces /checkpoint: a run killed
-// while it is written keeps the last complete one, and a run killed while it replaces it keeps
-// the new one whole (HDF5 may reuse the old one's space at once; read_checkpoint falls back).
-// It counts the frames and observables written so far, so that a resume drops those written
-// after it.
+// The checkpoint counts the frames and observables written so far, so that a resume drops those
+// written after it; they are on disk before it is.
 void H5mdFile::write_checkpoint(StateArchive archive) {
   require_open();
+  ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
   archive.put("writer/frames", static_cast<std::int64_t>(sets_.frame_step.extent[0]));
   archive.put("writer/observable_rows", static_cast<std::int64_t>(sets_.observable_step.extent[0]));
-  const std::string fresh = "/checkpoint.new";
-  if (H5Lexists(file_.get(), fresh.c_str(), H5P_DEFAULT) > 0)
-    ctx_.check(H5Ldelete(file_.get(), fresh.c_str(), H5P_DEFAULT), "replace", fresh);
-  const auto store = [&](const std::string& name, hid_t type, std::size_t n, const void* data) {
-    const std::string path = fresh + "/" + name;
-    const H5Handle set = ctx_.own(
-        H5Dcreate2(file_.get(), path.c_str(), type, ctx_.dataspace({static_cast<hsize_t>(n)}).get(),
-                   link_props_.get(), H5P_DEFAULT, H5P_DEFAULT),
-        H5Dclose, "create", path);
-    if (n > 0)
-      ctx_.check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write", path);
-  };
-  for (const auto& [name, values] : archive.all_reals())
-    store(name, H5T_NATIVE_DOUBLE, values.size(), values.data());
-  for (const auto& [name, values] : archive.all_integers())
-    store(name, H5T_NATIVE_INT64, values.size(), values.data());
-  ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
-  promote_fresh_checkpoint();
-}
-
-void H5mdFile::promote_fresh_checkpoint() {
-  if (H5Lexists(file_.get(), "/checkpoint", H5P_DEFAULT) > 0)
-    ctx_.check(H5Ldelete(file_.get(), "/checkpoint", H5P_DEFAULT), "replace", "/checkpoint");
-  ctx_.check(
-      H5Lmove(file_.get(), "/checkpoint.new", file_.get(), "/checkpoint", H5P_DEFAULT, H5P_DEFAULT),
-      "rename", "/checkpoint.new");
-  ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
+  write_checkpoint_file(checkpoint_path(path_), archive);
 }
 
 void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows) {
@@ -545,13 +511,9 @@ void H5mdFile::write_observables(std::int64_t step, double time, const Observabl
 
 std::filesystem::path H5mdFile::complete() {
   require_open();
-  // A complete run resumes nothing: its checkpoint goes, and with it the space it took.
-  const bool checkpointed = H5Lexists(file_.get(), "/checkpoint", H5P_DEFAULT) > 0 ||
-                            H5Lexists(file_.get(), "/checkpoint.new", H5P_DEFAULT) > 0;
   write_string_attribute("/parameters/granjet", "status", "complete");
   const XdmfLayout sidecar = layout();
   close();
-  if (checkpointed) drop_checkpoints();
   // An ensemble file holds no frames: nothing to draw, and a sidecar of frames that an earlier
   // file of this name held would show what is gone.
   if (frames_.empty())
@@ -561,33 +523,10 @@ std::filesystem::path H5mdFile::complete() {
   return ctx_.file();
 }
 
-// HDF5 does not give back the space of deleted objects, and the last checkpoint is as big as a
-// frame with the contact histories: the file is copied without it (hdf5_copy.hpp), under the
-// same lock. Where that fails (a disk too full for the copy) the file stays as it is, complete
-// but larger, its checkpoint deleted in place.
-void H5mdFile::drop_checkpoints() {
-  std::filesystem::path compact = ctx_.file();
-  compact += ".compact";
-  try {
-    FileLock held(compact);
-    copy_hdf5_except(ctx_.file(), compact, {"checkpoint", "checkpoint.new"});
-    std::filesystem::rename(compact, ctx_.file());
-    lock_.reset();
-    lock_.emplace(std::move(held));
-  } catch (const std::exception&) {
-    std::error_code ignored;
-    std::filesystem::remove(compact, ignored);
-    file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
-                     "the file");
-    for (const char* checkpoint : {"/checkpoint", "/checkpoint.new"})
-      if (H5Lexists(file_.get(), checkpoint, H5P_DEFAULT) > 0)
-        ctx_.check(H5Ldelete(file_.get(), checkpoint, H5P_DEFAULT), "remove", checkpoint);
-    close();
-  }
-}
-
+// A complete run resumes nothing: its checkpoint goes once the file has its final name.
 void H5mdFile::publish() {
   std::filesystem::rename(ctx_.file(), path_);
+  remove_checkpoint_file(checkpoint_path(path_));
   lock_.reset();
 }
 

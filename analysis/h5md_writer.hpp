@@ -72,12 +72,13 @@ class H5mdFile;  // the dimension-free part; defined in h5md_writer.cpp to keep 
 template <int D>
 class H5mdWriter {
  public:
-  // Creates `path` + ".partial" (never `path` itself) and holds a lock on it until publish().
+  // Creates `path` + ".partial" (never `path` itself) and holds a lock on it until publish();
+  // an earlier run's checkpoint beside it goes.
   // max_grains (> 0) is the number of grain ids 0..max_grains-1, one row each: grains may only
   // be removed during a run. Throws FileBusyError (analysis/file_lock.hpp) when another run writes
   // the same file, std::runtime_error naming the file when it cannot be created.
   H5mdWriter(std::filesystem::path path, const RunMetadata& meta, std::size_t max_grains);
-  // Reopens `path` + ".partial" at its checkpoint (read_checkpoint): frames and observables
+  // Reopens `path` + ".partial" at its checkpoint (checkpoint_file.hpp): frames and observables
   // written after it are dropped and the status is "running" again; the run goes on from
   // there.
   struct Resume {};
@@ -94,8 +95,8 @@ class H5mdWriter {
                    const ForceSample<D>* forces = nullptr);
   // Appends one row; it becomes durable with the next frame's flush or at the end.
   void write_observables(std::int64_t step, double time, const Observables& obs);
-  // Stores the run's state (with the count of frames and observables so far) as /checkpoint,
-  // replacing the last one, and flushes.
+  // Flushes the file and stores the run's state, with the count of frames and observables so
+  // far, in the checkpoint file beside it (checkpoint_file.hpp), replacing the last one.
   void write_checkpoint(const StateArchive& archive);
   // The stored scenes (RunMetadata::scene_ini, requested_scene_ini), replaced: a resume that
   // extends run.t_end.
@@ -104,6 +105,7 @@ class H5mdWriter {
   // name. Returns the .partial path, where the caller may add what else the run produced
   // (/fields, /analysis) before publish() renames it: a file under its final name is complete.
   std::filesystem::path complete();
+  // Renames the .partial to `path` and removes the checkpoint.
   void publish();
   // complete() and publish().
   void finish();

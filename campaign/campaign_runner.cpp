@@ -464,7 +464,7 @@ ChildProcess start_run(const PlannedRun& run) {
     return ChildProcess({"resume", run.file(".h5.partial").string(), "--summary",
                          run.file(".json").string(), "--no-log", "--no-signal-checkpoint"},
                         run.file(".log"));
-  for (const char* stale : {".h5", ".h5.partial", ".json", ".xmf", ".fields.xmf"})
+  for (const char* stale : {".h5", ".h5.partial", ".h5.checkpoint", ".json", ".xmf", ".fields.xmf"})
     std::filesystem::remove(run.file(stale));
   {
     std::ofstream ini(run.file(".ini"));

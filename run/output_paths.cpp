@@ -30,6 +30,8 @@ std::vector<OutputPath> run_outputs(const fs::path& out, const fs::path& summary
   std::vector<OutputPath> files = {
       {"--out", out, whose + " file"},
       {"--out", with_suffix(out, ".partial"), whose + " file while it is written"},
+      {"--out", with_suffix(out, ".checkpoint"), whose + " checkpoint"},
+      {"--out", with_suffix(out, ".checkpoint.partial"), whose + " checkpoint while it is written"},
       {"--out", with_extension(out, ".xmf"), whose + " XDMF sidecar"},
       {"--out", with_extension(out, ".fields.xmf"), whose + " fields sidecar"},
       {"--out", with_extension(out, ".log"), whose + " log"}};

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "analysis/checkpoint_file.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
 #include "core/errors.hpp"
@@ -402,8 +403,10 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   const bool leader = RankTeam::world().rank() == 0;
   if (!stored.checkpoint)
     throw InputError(partial.string(),
-                     "holds no checkpoint: the run stopped before its first "
-                     "run.checkpoint_interval; run it again");
+                     "has no checkpoint beside it (" +
+                         analysis::checkpoint_path(partial).filename().string() +
+                         "): the run stopped before its first run.checkpoint_interval; run it "
+                         "again");
   for (const std::string& assignment : options.overrides) {
     const std::string key = assignment.substr(0, assignment.find('='));
     if (std::find(kResumableKeys.begin(), kResumableKeys.end(), key) == kResumableKeys.end())
@@ -434,7 +437,8 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   if (leader) check_outputs(partial, outputs);  // rank 0 writes: the others would find its files
   // Every rank reads it; rank 0 writes to it only once the simulator is made, which all ranks
   // make together.
-  const StateArchive checkpoint = analysis::read_checkpoint(partial);
+  const StateArchive checkpoint =
+      analysis::read_checkpoint_file(analysis::checkpoint_path(partial));
   if (!options.quiet && leader)
     out << "resuming " << out_file.string() << " at t = " << stored.checkpoint_time << "\n";
   return with_dimension(scene.dimension, [&](auto d) {

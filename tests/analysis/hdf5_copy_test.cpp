@@ -1,4 +1,4 @@
-// copy_hdf5_except: what a re-analysis and a complete run's repack keep of a file. Everything
+// copy_hdf5_except: what a re-analysis keeps of a file. Everything
 // but the left-out groups, with attributes of every kind (object references made again in the
 // copy), hard links (in a group and across groups) still one object, soft links still soft; the
 // left-out groups never opened.

@@ -244,12 +244,15 @@ TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
   ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
   const pid_t pid = start_campaign(file, hit);
   ASSERT_GE(pid, 0);
+  // This campaign's run only, not another test's: [.] keeps the pattern from matching the shell
+  // that runs pkill.
+  const std::string kill =
+      "pkill -KILL -f 'run " + (hit / "jet3d").string() + "/jet3d[.]seed1[.]ini'";
   bool killed = false;
   for (int tries = 0; tries < 6000 && !killed; ++tries) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     if (checkpointed(hit / "jet3d" / "jet3d.seed1.h5.partial", 3.0))
-      // [.]: the pattern must not match the shell that runs pkill.
-      killed = std::system("pkill -KILL -f 'run .*jet3d[.]seed1[.]ini'") == 0;
+      killed = std::system(kill.c_str()) == 0;
   }
   int status = 0;
   waitpid(pid, &status, 0);

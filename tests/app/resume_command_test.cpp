@@ -2,7 +2,6 @@
 // the straight run's frames, observables, fields, analysis and summary (minus timings), bit for
 // bit; a resume may extend run.t_end and nothing that would make it another run.
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/checkpoint_file.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "command_fixture.hpp"
 
@@ -144,35 +144,52 @@ TEST_F(Resume, KilledRunResumedIsBitIdenticalOnBothBackends) {
   }
 }
 
-// Killed while it replaced its checkpoint: the old /checkpoint gone (or its space reused), the
-// complete /checkpoint.new not yet renamed. The resume reads the fresh one, finishes the
-// replacement before its own checkpoints, and gives the straight run.
-TEST_F(Resume, KilledWhileReplacingItsCheckpointResumesFromTheFreshOne) {
+// Killed while it wrote its next checkpoint: a half-written run.h5.checkpoint.partial lies beside
+// the last complete checkpoint. The resume goes on from that one, gives the straight run, and
+// the finished run leaves no checkpoint file behind.
+TEST_F(Resume, KilledWhileWritingACheckpointResumesFromTheLastComplete) {
   const std::string base = "run " + scene("jet3d.ini") +
                            " --quiet --set jet.grains=3000 --set run.t_end=20"
                            " --set run.checkpoint_interval=2 --set output.interval=1"
                            " --set analysis.window_start=5 --set analysis.window_end=20";
   ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
+  EXPECT_FALSE(fs::exists(analysis::checkpoint_path(dir_ / "straight.h5")));
   const fs::path partial = dir_ / "killed.h5.partial";
   ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 6.0));
+  const fs::path checkpoint = analysis::checkpoint_path(partial);
+  EXPECT_EQ(checkpoint, dir_ / "killed.h5.checkpoint");
   const double at = analysis::read_summary(partial).checkpoint_time;
-  {
-    const hid_t file = H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-    ASSERT_GE(file, 0);
-    EXPECT_GE(H5Lmove(file, "/checkpoint", file, "/checkpoint.new", H5P_DEFAULT, H5P_DEFAULT), 0);
-    H5Fclose(file);
-  }
+  fs::path torn = checkpoint;
+  torn += ".partial";
+  const std::string whole = bytes_of(checkpoint);
+  std::ofstream(torn, std::ios::binary) << whole.substr(0, whole.size() / 2);
   const analysis::FileSummary left = analysis::read_summary(partial);
   EXPECT_TRUE(left.checkpoint);
   EXPECT_EQ(left.checkpoint_time, at);
-  bool from_fresh = false;
-  EXPECT_NO_THROW(analysis::read_checkpoint(partial, &from_fresh));
-  EXPECT_TRUE(from_fresh);
   ASSERT_EQ(granjet("resume " + partial.string() + " --quiet --summary " +
                     (dir_ / "killed.json").string()),
             0)
       << err_;
   expect_same_run("straight", "killed");
+  EXPECT_FALSE(fs::exists(checkpoint));
+  EXPECT_FALSE(fs::exists(torn));
+}
+
+// A .partial without its checkpoint (moved away, or a run killed before its first) is refused
+// with the file it lacks named, and left as it was.
+TEST_F(Resume, APartialWithoutItsCheckpointIsRefusedAndKept) {
+  const std::string base = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=3000 --set run.t_end=20"
+                           " --set run.checkpoint_interval=2 --set analysis.enabled=false";
+  const fs::path partial = dir_ / "killed.h5.partial";
+  ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 2.0));
+  fs::remove(analysis::checkpoint_path(partial));
+  EXPECT_FALSE(analysis::read_summary(partial).checkpoint);
+  const std::string before = bytes_of(partial);
+  EXPECT_EQ(granjet("resume " + partial.string() + " --quiet"), 2);
+  EXPECT_NE(err_.find("has no checkpoint beside it (killed.h5.checkpoint)"), std::string::npos)
+      << err_;
+  EXPECT_EQ(bytes_of(partial), before);
 }
 
 // SIGINT, SIGTERM, SIGHUP: the run stops after its step, writes a checkpoint, keeps its

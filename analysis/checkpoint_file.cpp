@@ -1,0 +1,140 @@
+#include "analysis/checkpoint_file.hpp"
+
+#include <hdf5.h>
+
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "analysis/hdf5_handle.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+constexpr const char* kTime = "/app/time";
+
+void write_entries(const H5Context& ctx, const StateArchive& archive) {
+  H5Handle file = ctx.own(H5Fcreate(ctx.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                          H5Fclose, "create", "the HDF5 file");
+  const H5Handle link_props =
+      ctx.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
+  ctx.check(H5Pset_create_intermediate_group(link_props.get(), 1), "set", "link properties");
+  const auto store = [&](const std::string& name, hid_t type, std::size_t n, const void* data) {
+    const H5Handle set = ctx.own(
+        H5Dcreate2(file.get(), name.c_str(), type, ctx.dataspace({static_cast<hsize_t>(n)}).get(),
+                   link_props.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Dclose, "create", name);
+    if (n > 0)
+      ctx.check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write", name);
+  };
+  for (const auto& [name, values] : archive.all_reals())
+    store(name, H5T_NATIVE_DOUBLE, values.size(), values.data());
+  for (const auto& [name, values] : archive.all_integers())
+    store(name, H5T_NATIVE_INT64, values.size(), values.data());
+  ctx.check(file.reset(), "close", "the HDF5 file");  // writes the last metadata
+}
+
+// Every dataset of the file, by its path below the root.
+std::vector<std::string> dataset_names(const H5Context& ctx, hid_t file) {
+  std::vector<std::string> names;
+  ctx.check(H5Ovisit(
+                file, H5_INDEX_NAME, H5_ITER_INC,
+                [](hid_t, const char* name, const H5O_info_t* info, void* out) -> herr_t {
+                  if (info->type == H5O_TYPE_DATASET)
+                    static_cast<std::vector<std::string>*>(out)->push_back(name);
+                  return 0;
+                },
+                &names),
+            "list", "the checkpoint's entries");
+  return names;
+}
+
+// The file opened read-only; InputError when it is not there or not HDF5.
+H5Handle open_checkpoint(const H5Context& ctx) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(ctx.file(), ec) || H5Fis_hdf5(ctx.file().c_str()) <= 0)
+    throw InputError(ctx.file().string(),
+                     "is not a readable checkpoint (a run stopped before its first "
+                     "run.checkpoint_interval has none)");
+  return ctx.open_read_only();
+}
+
+std::filesystem::path being_written(const std::filesystem::path& checkpoint) {
+  std::filesystem::path partial = checkpoint;
+  partial += ".partial";
+  return partial;
+}
+
+}  // namespace
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& run_file) {
+  std::filesystem::path path = run_file;
+  if (path.extension() == ".partial") path.replace_extension();
+  path += ".checkpoint";
+  return path;
+}
+
+void write_checkpoint_file(const std::filesystem::path& checkpoint, const StateArchive& archive) {
+  const std::filesystem::path partial = being_written(checkpoint);
+  try {
+    const H5Context ctx(partial);
+    write_entries(ctx, archive);
+    std::filesystem::rename(partial, checkpoint);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw;
+  }
+}
+
+void remove_checkpoint_file(const std::filesystem::path& checkpoint) {
+  std::filesystem::remove(checkpoint);
+  std::filesystem::remove(being_written(checkpoint));
+}
+
+StateArchive read_checkpoint_file(const std::filesystem::path& checkpoint) {
+  const H5Context ctx(checkpoint, H5Context::Role::kInput);
+  const H5Handle file = open_checkpoint(ctx);
+  StateArchive archive;
+  for (const std::string& name : dataset_names(ctx, file.get())) {
+    const H5Handle set =
+        ctx.own(H5Dopen2(file.get(), name.c_str(), H5P_DEFAULT), H5Dclose, "open", name);
+    const H5Handle type = ctx.own(H5Dget_type(set.get()), H5Tclose, "query", name);
+    const H5Handle space = ctx.own(H5Dget_space(set.get()), H5Sclose, "query", name);
+    const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+    if (n < 0) ctx.fail("count", name);
+    const auto read = [&](hid_t memory_type, void* out) {
+      if (n > 0)
+        ctx.check(H5Dread(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out), "read",
+                  name);
+    };
+    if (H5Tget_class(type.get()) == H5T_FLOAT) {
+      std::vector<double> values(n);
+      read(H5T_NATIVE_DOUBLE, values.data());
+      archive.put_reals(name, std::move(values));
+    } else {
+      std::vector<std::int64_t> values(n);
+      read(H5T_NATIVE_INT64, values.data());
+      archive.put_integers(name, std::move(values));
+    }
+  }
+  return archive;
+}
+
+std::optional<double> checkpoint_time(const std::filesystem::path& checkpoint) {
+  try {
+    const H5Context ctx(checkpoint, H5Context::Role::kInput);
+    const H5Handle file = open_checkpoint(ctx);
+    const H5Handle set = ctx.own(H5Dopen2(file.get(), kTime, H5P_DEFAULT), H5Dclose, "open", kTime);
+    const H5Handle space = ctx.own(H5Dget_space(set.get()), H5Sclose, "query", kTime);
+    if (H5Sget_simple_extent_npoints(space.get()) != 1) return std::nullopt;
+    double time = 0.0;
+    ctx.check(H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &time), "read",
+              kTime);
+    return time;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace granjet::analysis

@@ -1,0 +1,116 @@
+// A run's checkpoint file (analysis/checkpoint_file.hpp): every entry back bit for bit, its name
+// beside the run's file, and a failed or torn write that leaves the last complete one.
+#include "analysis/checkpoint_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace granjet::analysis {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CheckpointFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // One directory per test: ctest runs them side by side.
+    dir_ = fs::temp_directory_path() /
+           (std::string("granjet_checkpoint_file_") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static StateArchive sample(double time) {
+    StateArchive archive;
+    archive.put("app/time", time);
+    archive.put_reals("dem/force_prev", {1.0 / 3.0, -0.0, std::numeric_limits<double>::quiet_NaN(),
+                                         std::numeric_limits<double>::denorm_min(), 1e308});
+    archive.put_reals("dem/empty", {});
+    archive.put_integers("writer/frames", {7});
+    archive.put_integers("ids", {-1, 0, std::numeric_limits<std::int64_t>::max()});
+    return archive;
+  }
+  static std::vector<std::uint64_t> bits(const std::vector<double>& values) {
+    std::vector<std::uint64_t> out;
+    for (double v : values) out.push_back(std::bit_cast<std::uint64_t>(v));
+    return out;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CheckpointFile, LiesBesideTheRunsFileWhetherItIsPartialOrNot) {
+  EXPECT_EQ(checkpoint_path("out/run.h5"), fs::path("out/run.h5.checkpoint"));
+  EXPECT_EQ(checkpoint_path("out/run.h5.partial"), fs::path("out/run.h5.checkpoint"));
+}
+
+TEST_F(CheckpointFile, GivesBackEveryEntryBitForBit) {
+  const fs::path file = dir_ / "run.h5.checkpoint";
+  const StateArchive written = sample(12.5);
+  write_checkpoint_file(file, written);
+  const StateArchive read = read_checkpoint_file(file);
+  EXPECT_EQ(read.all_integers(), written.all_integers());
+  ASSERT_EQ(read.all_reals().size(), written.all_reals().size());
+  for (const auto& [name, values] : written.all_reals())
+    EXPECT_EQ(bits(read.reals(name)), bits(values)) << name;
+  EXPECT_EQ(checkpoint_time(file), 12.5);
+  EXPECT_FALSE(fs::exists(dir_ / "run.h5.checkpoint.partial"));
+}
+
+TEST_F(CheckpointFile, ATornWriteBesideItLeavesTheLastComplete) {
+  const fs::path file = dir_ / "run.h5.checkpoint";
+  write_checkpoint_file(file, sample(4.0));
+  std::string whole;
+  {
+    std::ifstream in(file, std::ios::binary);
+    whole.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::ofstream(dir_ / "run.h5.checkpoint.partial", std::ios::binary)
+      << whole.substr(0, whole.size() / 3);
+  EXPECT_EQ(checkpoint_time(file), 4.0);
+  write_checkpoint_file(file, sample(6.0));  // the torn one is written over
+  EXPECT_EQ(read_checkpoint_file(file).real("app/time"), 6.0);
+  remove_checkpoint_file(file);
+  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_NO_THROW(remove_checkpoint_file(file));  // none left: no error
+}
+
+TEST_F(CheckpointFile, AWriteThatFailsKeepsTheLastOne) {
+  const fs::path file = dir_ / "run.h5.checkpoint";
+  write_checkpoint_file(file, sample(4.0));
+  // A directory where the file being written would go: its creation fails.
+  fs::create_directory(dir_ / "run.h5.checkpoint.partial");
+  fs::create_directory(dir_ / "run.h5.checkpoint.partial" / "x");
+  EXPECT_THROW(write_checkpoint_file(file, sample(6.0)), std::runtime_error);
+  EXPECT_EQ(checkpoint_time(file), 4.0);
+}
+
+TEST_F(CheckpointFile, AMissingOrForeignOneIsAnInputErrorNamingIt) {
+  const fs::path missing = dir_ / "none.h5.checkpoint";
+  EXPECT_FALSE(checkpoint_time(missing).has_value());
+  try {
+    read_checkpoint_file(missing);
+    FAIL() << "read a missing checkpoint";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(missing.string()), std::string::npos) << e.what();
+  }
+  const fs::path text = dir_ / "text.h5.checkpoint";
+  std::ofstream(text) << "not HDF5\n";
+  EXPECT_THROW(read_checkpoint_file(text), InputError);
+  EXPECT_FALSE(checkpoint_time(text).has_value());
+}
+
+}  // namespace
+}  // namespace granjet::analysis
