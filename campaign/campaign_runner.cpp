@@ -54,6 +54,26 @@ bool holds_run(const std::filesystem::path& file, const PlannedRun& run) {
   }
 }
 
+// Whether the run's .partial holds a checkpoint of this very run: a run interrupted (or killed)
+// after it goes on from there.
+bool resumable(const PlannedRun& run) {
+  if (!holds_run(run.file(".h5.partial"), run)) return false;
+  try {
+    return analysis::read_summary(run.file(".h5.partial")).checkpoint;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// The last line a run's log holds: the error of a run that failed.
+std::string last_line(const std::filesystem::path& log) {
+  std::ifstream in(log);
+  std::string last;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) last = line;
+  return last;
+}
+
 RunState state_of_exit(int code) {
   if (code == 128 + SIGINT || code == 128 + SIGTERM || code == 128 + SIGHUP)
     return RunState::kInterrupted;
@@ -217,6 +237,10 @@ class Coordinator {
     entry["rank"] = rank;
     entry["started"] = utc_now();
     manifest_.save();
+    if (resumable(plan_.runs[r]))  // as start_run sees it, here or on a worker rank
+      resuming_.insert(r);
+    else
+      resuming_.erase(r);
   }
 
   void finished(std::size_t r, int code, double seconds, int rank) {
@@ -238,6 +262,22 @@ class Coordinator {
         out_ << plan_.runs[r].name << "  killed (exit code " << code
              << "): back in the queue, to resume from its checkpoint\n"
              << std::flush;
+      return;
+    }
+    // A resume that fails on its file (exit 1: the .partial could not be read back or written
+    // on, as a kill in the middle of HDF5's writes can leave it) would fail at every invocation:
+    // the run starts again from t = 0, once.
+    if (code == 1 && resuming_.contains(r) && interrupted_ == 0 && !restarted_.contains(r)) {
+      restarted_.insert(r);
+      const PlannedRun& run = plan_.runs[r];
+      out_ << run.name << "  could not be resumed (" << last_line(run.file(".log"))
+           << "): its .partial and checkpoint are discarded and it starts again from t = 0\n"
+           << std::flush;
+      for (const char* stale : {".h5.partial", ".h5.checkpoint"})
+        std::filesystem::remove(run.file(stale));
+      queue_.push_front(r);
+      manifest_.run(run.name)["status"] = "pending";
+      manifest_.save();
       return;
     }
     RunOutcome& o = outcomes_[r];
@@ -355,8 +395,10 @@ class Coordinator {
   std::chrono::steady_clock::time_point start_;
   std::size_t found_ = 0, executed_ = 0;
   double to_do_seconds_ = 0.0, done_seconds_ = 0.0;
-  int interrupted_ = 0;             // the signal that stopped this invocation
-  std::set<std::size_t> requeued_;  // runs killed once and queued again
+  int interrupted_ = 0;              // the signal that stopped this invocation
+  std::set<std::size_t> requeued_;   // runs killed once and queued again
+  std::set<std::size_t> resuming_;   // runs started from their checkpoints
+  std::set<std::size_t> restarted_;  // runs whose resume failed, started again
 };
 
 }  // namespace
@@ -372,17 +414,6 @@ RunState stored_state(const PlannedRun& run) {
 }
 
 namespace {
-
-// Whether the run's .partial holds a checkpoint of this very run: a run interrupted (or killed)
-// after it goes on from there.
-bool resumable(const PlannedRun& run) {
-  if (!holds_run(run.file(".h5.partial"), run)) return false;
-  try {
-    return analysis::read_summary(run.file(".h5.partial")).checkpoint;
-  } catch (const std::exception&) {
-    return false;
-  }
-}
 
 // "section.key" -> value of a scene's INI text (scene_to_ini's layout).
 std::map<std::string, std::string> ini_values(const std::string& ini) {

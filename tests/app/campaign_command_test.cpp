@@ -16,6 +16,7 @@
 #include <tuple>
 
 #include "analysis/field_reader.hpp"
+#include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "command_fixture.hpp"
 
@@ -266,6 +267,45 @@ TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
   EXPECT_NE(logged.find("continuing "), std::string::npos)
       << "resumed, not run again; its log:\n"
       << logged << "its manifest entry: " << entry.dump();
+  expect_same_jet3d(straight, hit);
+}
+
+// A .partial that a resume cannot use (here a dataset the writer reopens is gone, as a kill in
+// the middle of HDF5's writes could leave it) does not hold the campaign up at every
+// invocation: the run starts again from t = 0, once, says why, and the files are those of a
+// campaign never hit.
+TEST_F(CampaignCommand, ARunWhoseResumeFailsStartsAgainFromTheStart) {
+  const fs::path file = long_jet3d();
+  const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
+  const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
+  ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
+  const pid_t pid = start_campaign(file, hit);
+  ASSERT_GE(pid, 0);
+  const fs::path partial = hit / "jet3d" / "jet3d.seed1.h5.partial";
+  bool killed = false;  // the campaign, and with it its run (PR_SET_PDEATHSIG)
+  for (int tries = 0; tries < 6000 && !killed; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (checkpointed(partial, 3.0)) killed = kill(pid, SIGKILL) == 0;
+  }
+  waitpid(pid, nullptr, 0);
+  ASSERT_TRUE(killed) << "the run ended before it could be killed";
+  // The run dies just after its campaign: its lock on the .partial goes with it.
+  for (int tries = 0; tries < 1000 && analysis::FileLock::held(partial); ++tries)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  {
+    const hid_t h5 = H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(h5, 0);
+    EXPECT_GE(H5Ldelete(h5, "/observables/dt", H5P_DEFAULT), 0);
+    H5Fclose(h5);
+  }
+  ASSERT_TRUE(analysis::read_summary(partial).checkpoint);  // it looks resumable
+  ASSERT_EQ(granjet("campaign " + file.string() + only + hit.string()), 0) << err_;
+  std::ifstream report(dir_ / "stdout.txt");
+  const std::string said{std::istreambuf_iterator<char>(report), {}};
+  EXPECT_NE(said.find("jet3d/jet3d.seed1  could not be resumed ("), std::string::npos) << said;
+  EXPECT_NE(said.find("/observables/dt"), std::string::npos) << said;
+  EXPECT_NE(said.find("starts again from t = 0"), std::string::npos) << said;
+  EXPECT_EQ(manifest(hit)["runs"]["jet3d/jet3d.seed1"]["status"], "complete");
   expect_same_jet3d(straight, hit);
 }
 
