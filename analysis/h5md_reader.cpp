@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <new>
 #include <optional>
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "analysis/checkpoint_file.hpp"
 #include "analysis/hdf5_handle.hpp"
@@ -30,6 +32,9 @@ constexpr const char* kRadius = "/particles/all/radius/value";
 constexpr const char* kId = "/particles/all/id/value";
 constexpr const char* kPresent = "/particles/all/present/value";
 constexpr const char* kObservableStep = "/observables/kinetic_energy/step";
+// The series of one row per frame that readers use, with their ranks (kPresent: when stored).
+constexpr std::array<std::pair<const char*, int>, 6> kFrameSeries = {
+    {{kFrameTime, 1}, {kFrameGrains, 1}, {kPosition, 3}, {kVelocity, 3}, {kRadius, 2}, {kId, 2}}};
 
 template <class T>
 hid_t native_type() {
@@ -177,7 +182,9 @@ FileSummary read_summary(const std::filesystem::path& file) {
                                         "; granjet writes 2 or 3");
   summary.scene_ini = in.string_dataset(kScene);
   if (in.exists(kRequestedScene)) summary.requested_scene_ini = in.string_dataset(kRequestedScene);
-  if (summary.status != "complete") {
+  // A run's own file, not yet renamed: even one marked complete may have been killed while it
+  // added its fields, and resumes from its checkpoint.
+  if (file.extension() == ".partial") {
     if (const std::optional<double> time = checkpoint_time(checkpoint_path(file))) {
       summary.checkpoint = true;
       summary.checkpoint_time = *time;
@@ -188,7 +195,13 @@ FileSummary read_summary(const std::filesystem::path& file) {
     for (std::string line; std::getline(lines, line);)
       if (!line.empty()) summary.members.push_back(line);
   }
+  // The frames every per-frame dataset holds: a run killed while it appended one holds it in
+  // some of them only (resume drops it).
   summary.frames = in.extent(kFrameStep, 1)[0];
+  for (const auto& [set, rank] : kFrameSeries)
+    summary.frames = std::min<std::size_t>(summary.frames, in.extent(set, rank)[0]);
+  if (in.exists(kPresent))
+    summary.frames = std::min<std::size_t>(summary.frames, in.extent(kPresent, 2)[0]);
   summary.max_grains = in.extent(kPosition, 3)[1];
   summary.observable_rows = in.extent(kObservableStep, 1)[0];
   if (summary.frames > 0) {

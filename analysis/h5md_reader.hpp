@@ -28,8 +28,8 @@ struct FileSummary {
   std::string requested_scene_ini;  // where the backend adapted the scene; else empty
   // An ensemble file's member runs, relative to its directory; empty for a run's file.
   std::vector<std::string> members;
-  // Whether a run that is not complete has a readable checkpoint beside it (checkpoint_file.hpp):
-  // a .partial that can be resumed.
+  // Whether the file is a run's .partial with a readable checkpoint beside it
+  // (checkpoint_file.hpp): one that can be resumed.
   bool checkpoint = false;
   double checkpoint_time = 0.0;
 };

@@ -13,6 +13,7 @@
 
 #include "analysis/checkpoint_file.hpp"
 #include "analysis/file_lock.hpp"
+#include "analysis/hdf5_copy.hpp"
 #include "analysis/hdf5_handle.hpp"
 #include "analysis/xdmf_sidecar.hpp"
 #include "core/plate_face.hpp"
@@ -82,6 +83,7 @@ class H5mdFile {
   std::filesystem::path abandon(const std::string& reason);
 
  private:
+  void drop_fields_and_analysis();
   // An extendable dataset; extent is its current shape [rows, row shape...].
   struct Dataset {
     H5Handle handle;
@@ -342,6 +344,7 @@ H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
     : path_(std::move(path)), ctx_(partial_path(path_)), dimension_(dimension) {
   lock_.emplace(ctx_.file());
   const StateArchive checkpoint = read_checkpoint_file(checkpoint_path(path_));
+  drop_fields_and_analysis();
   file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
                    "the HDF5 file");
   link_props_ = ctx_.own(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "create", "link properties");
@@ -375,12 +378,17 @@ H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
   max_grains_ = sets_.position.extent.at(1);
   const auto frames = static_cast<hsize_t>(checkpoint.integer("writer/frames"));
   const auto rows = static_cast<hsize_t>(checkpoint.integer("writer/observable_rows"));
-  if (frames > sets_.frame_step.extent[0] || rows > sets_.observable_step.extent[0])
-    ctx_.fail("resume at", "a checkpoint that counts more frames than the file holds");
-  for (Dataset* set : sets_.per_frame()) truncate(*set, frames);
+  // Truncation that lengthened a dataset would make up rows: every one must hold the
+  // checkpoint's (it flushed them before it was written).
+  const auto keep = [&](Dataset& set, hsize_t count) {
+    if (count > set.extent[0])
+      ctx_.fail("resume at", "a checkpoint that counts more rows than " + set.name + " holds");
+    truncate(set, count);
+  };
+  for (Dataset* set : sets_.per_frame()) keep(*set, frames);
   for (Dataset* set : {&sets_.observable_step, &sets_.observable_time, &sets_.grains})
-    truncate(*set, rows);
-  for (Dataset& set : sets_.energies) truncate(set, rows);
+    keep(*set, rows);
+  for (Dataset& set : sets_.energies) keep(set, rows);
   std::vector<double> time(frames), interval(frames);
   std::vector<std::int64_t> grains(frames), contacts(frames);
   if (frames > 0) {
@@ -410,6 +418,33 @@ void H5mdFile::replace_scenes(const std::string& scene_ini,
     if (exists(name)) ctx_.check(H5Ldelete(file_.get(), name, H5P_DEFAULT), "replace", name);
   write_string_dataset(kScene, scene_ini);
   if (!requested_scene_ini.empty()) write_string_dataset(kRequestedScene, requested_scene_ini);
+}
+
+// Killed after it completed, while it stored its fields and analysis: the resume makes them
+// again, and a kill in the middle of that can leave a header half-written, which HDF5 cannot
+// delete. The file is copied without them (hdf5_copy.hpp, which never opens what it leaves
+// out), under the same lock.
+void H5mdFile::drop_fields_and_analysis() {
+  bool stored = false;
+  {
+    const H5Handle file = ctx_.open_read_only();
+    for (const char* group : {"/fields", "/analysis"})
+      stored = stored || H5Lexists(file.get(), group, H5P_DEFAULT) > 0;
+  }
+  if (!stored) return;
+  std::filesystem::path copy = ctx_.file();
+  copy += ".copy";
+  FileLock held(copy);
+  try {
+    copy_hdf5_except(ctx_.file(), copy, {"fields", "analysis"});
+    std::filesystem::rename(copy, ctx_.file());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(copy, ignored);
+    throw;
+  }
+  lock_.reset();
+  lock_.emplace(std::move(held));
 }
 
 H5mdFile::Dataset H5mdFile::open_series(const std::string& name) const {

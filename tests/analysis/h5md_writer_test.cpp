@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/checkpoint_file.hpp"
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "core/errors.hpp"
@@ -236,6 +237,99 @@ TEST_F(H5mdWriterTest, FlushedFramesSurviveAKilledRun) {
   EXPECT_EQ(summary.status, "running");
   EXPECT_EQ(summary.frames, 2u);
   expect_frames_read_back<3>(partial(file), 2);
+}
+
+// Killed while it appended a frame after its checkpoint: the frame reached some series only
+// (here the steps, one row longer than the rest). The summary counts the frames every series
+// holds, and a resume drops the torn one with everything after the checkpoint, goes on, and
+// removes the checkpoint once published.
+TEST_F(H5mdWriterTest, AFrameTornByAKillIsNotCountedAndAResumeDropsIt) {
+  const fs::path file = dir_ / "run.h5";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    H5mdWriter<3> writer(file, metadata(3), kRows);
+    write_frames(writer, 1);
+    StateArchive state;
+    state.put("app/time", 0.25);
+    writer.write_checkpoint(state);
+    writer.write_frame(100, 0.5, grains_of<3>(1));
+    std::_Exit(0);  // no destructor, no close: as if the run were killed
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  {
+    const hid_t f = H5Fopen(partial(file).c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t step = H5Dopen2(f, "/particles/all/position/step", H5P_DEFAULT);
+    const hsize_t longer[1] = {3};
+    ASSERT_GE(H5Dset_extent(step, longer), 0);
+    H5Dclose(step);
+    H5Fclose(f);
+  }
+  const FileSummary torn = read_summary(partial(file));
+  EXPECT_EQ(torn.frames, 2u);
+  EXPECT_EQ(torn.last_time, 0.5);
+  EXPECT_TRUE(torn.checkpoint);
+  EXPECT_EQ(torn.checkpoint_time, 0.25);
+  {
+    H5mdWriter<3> writer(file, H5mdWriter<3>::Resume{});
+    writer.write_frame(100, 0.5, grains_of<3>(1));
+    writer.write_frame(200, 1.0, grains_of<3>(2));
+    writer.finish();
+  }
+  EXPECT_EQ(read_summary(file).frames, 3u);
+  expect_frames_read_back<3>(file, 3);
+  EXPECT_FALSE(fs::exists(checkpoint_path(file)));
+}
+
+// Killed after it completed, while it stored its analysis: the group's header was never
+// written (here: zeroed), so HDF5 can neither read nor delete it. A resume from the checkpoint
+// drops it with /fields, keeps the frames up to the checkpoint, and goes on.
+TEST_F(H5mdWriterTest, AResumeAfterAKillThatTornTheAnalysisDropsIt) {
+  const fs::path file = dir_ / "run.h5";
+  {
+    H5mdWriter<3> writer(file, metadata(3), kRows);
+    write_frames(writer, 2);
+    StateArchive state;
+    state.put("app/time", 0.5);
+    writer.write_checkpoint(state);
+    write_frames(writer, 3);  // frames 0 and 1 again: rows need not differ here
+    writer.complete();
+  }  // the destructor leaves the .partial: never published
+  haddr_t header = HADDR_UNDEF;
+  {
+    const hid_t f = H5Fopen(partial(file).c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    for (const char* group : {"/fields", "/analysis"})
+      H5Gclose(H5Gcreate2(f, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    H5O_info_t info;
+    ASSERT_GE(H5Oget_info_by_name2(f, "/analysis", &info, H5O_INFO_BASIC, H5P_DEFAULT), 0);
+    header = info.addr;
+    H5Fclose(f);
+  }
+  {
+    std::fstream bytes(partial(file), std::ios::in | std::ios::out | std::ios::binary);
+    bytes.seekp(static_cast<std::streamoff>(header));
+    const std::string zeros(64, '\0');
+    bytes.write(zeros.data(), static_cast<std::streamsize>(zeros.size()));
+  }
+  {
+    const hid_t f = H5Fopen(partial(file).c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    H5E_BEGIN_TRY { EXPECT_LT(H5Ldelete(f, "/analysis", H5P_DEFAULT), 0); }
+    H5E_END_TRY;
+    H5Fclose(f);
+  }
+  EXPECT_TRUE(read_summary(partial(file)).checkpoint);  // complete, yet not published
+  {
+    H5mdWriter<3> writer(file, H5mdWriter<3>::Resume{});
+    writer.write_frame(200, 1.0, grains_of<3>(2));
+    writer.finish();
+  }
+  expect_frames_read_back<3>(file, 3);
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_EQ(H5Lexists(f, "/analysis", H5P_DEFAULT), 0);
+  EXPECT_EQ(H5Lexists(f, "/fields", H5P_DEFAULT), 0);
+  H5Fclose(f);
 }
 
 // Whatever else a run stores (/fields, /analysis) goes into the .partial between complete() and

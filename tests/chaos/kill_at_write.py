@@ -1,0 +1,88 @@
+"""A run killed between any two of its writes resumes to the run never killed (label long).
+
+The LD_PRELOAD shim tests/chaos/kill_at_write.c counts a run's write calls to its .partial and
+its checkpoint being written, and raises SIGKILL instead of making call number N. A kill
+between two of HDF5's writes lands in the middle of a flush, where the file's metadata is half
+written; a signal sent from outside (chaos_campaign.py) rarely meets one. For --points values of
+N spread over the whole run, the killed run is resumed and its file compared with the straight
+run's (h5diff, every dataset and attribute). A run killed before its first checkpoint is
+written must be refused by resume (exit 2), and nothing else.
+
+    /usr/bin/python3 tests/chaos/kill_at_write.py --granjet build/app/granjet \\
+        --shim build/tests/libgranjet_kill_at_write.so [--points 40]
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+# jet3d to t = 20 with a checkpoint every time unit, frames every time unit, inline analysis
+# and contact output: every kind of write a run makes, a few seconds a run.
+SETTINGS = ["jet.grains=3000", "run.t_end=20", "run.checkpoint_interval=1", "output.interval=1",
+            "analysis.window_start=5", "analysis.window_end=20",
+            "output.fields=position,velocity,radius,id,omega,force,contacts"]
+
+
+def run_command(granjet, out):
+    command = [granjet, "run", str(ROOT / "scenes" / "jet3d.ini"), "--quiet", "--no-log",
+               "--out", str(out)]
+    for setting in SETTINGS:
+        command += ["--set", setting]
+    return command
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--granjet", required=True)
+    parser.add_argument("--shim", required=True)
+    parser.add_argument("--points", type=int, default=40)
+    args = parser.parse_args()
+    granjet = str(Path(args.granjet).resolve())
+    shim = str(Path(args.shim).resolve())
+    work = Path(tempfile.mkdtemp(prefix="granjet_kill_at_write_"))
+    try:
+        straight = work / "straight.h5"
+        subprocess.run(run_command(granjet, straight), check=True)
+        counted = work / "writes.txt"
+        env = dict(os.environ, LD_PRELOAD=shim, KILL_AT="0", GRANJET_WRITE_COUNT=str(counted))
+        subprocess.run(run_command(granjet, work / "counted.h5"), check=True, env=env)
+        writes = int(counted.read_text())
+        print(f"a run makes {writes} writes to its files; killed at {args.points} of them",
+              flush=True)
+        outcomes, failures = {"resumed": 0, "before its first checkpoint": 0}, []
+        for k in range(args.points):
+            n = 1 + k * (writes - 1) // max(args.points - 1, 1)
+            out = work / f"killed{n}.h5"
+            env["KILL_AT"] = str(n)
+            killed = subprocess.run(run_command(granjet, out), env=env)
+            if killed.returncode != -9:
+                failures.append(f"write {n}: the run was not killed (exit {killed.returncode})")
+                continue
+            partial = Path(f"{out}.partial")
+            resumed = subprocess.run([granjet, "resume", str(partial), "--quiet", "--no-log"],
+                                     capture_output=True, text=True)
+            # Refused (no checkpoint; killed at the first write, not even an HDF5 file yet).
+            if resumed.returncode == 2 and not Path(f"{out}.checkpoint").exists():
+                outcomes["before its first checkpoint"] += 1
+            elif resumed.returncode != 0:
+                failures.append(f"write {n}: resume exits {resumed.returncode}: "
+                                f"{resumed.stderr.strip()}")
+            elif subprocess.run(["h5diff", "-q", str(straight), str(out)]).returncode != 0:
+                failures.append(f"write {n}: the resumed file differs from the straight run's")
+            else:
+                outcomes["resumed"] += 1
+            for leftover in work.glob(f"killed{n}.*"):
+                leftover.unlink()
+        print(", ".join(f"{count} {what}" for what, count in outcomes.items()), flush=True)
+        if failures:
+            sys.exit("\n".join(failures))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
