@@ -101,6 +101,20 @@ fs::path partial(fs::path file) {
   return file;
 }
 
+// Runs `body` in a child process that then ends without destructors or closes, as if the run
+// were killed; whether it got that far.
+template <class Body>
+bool in_a_killed_process(Body body) {
+  const pid_t child = fork();
+  if (child == 0) {
+    body();
+    std::_Exit(0);
+  }
+  int status = 0;
+  return child > 0 && waitpid(child, &status, 0) == child && WIFEXITED(status) &&
+         WEXITSTATUS(status) == 0;
+}
+
 class H5mdWriterTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -223,16 +237,10 @@ TEST_F(H5mdWriterTest, DestroyedWriterLeavesPartialMarkedRunning) {
 
 TEST_F(H5mdWriterTest, FlushedFramesSurviveAKilledRun) {
   const fs::path file = dir_ / "run.h5";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
+  ASSERT_TRUE(in_a_killed_process([&] {
     H5mdWriter<3> writer(file, metadata(3), kRows);
     write_frames(writer, 2);
-    std::_Exit(0);  // no destructor, no close: as if the run were killed
-  }
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  }));
   const FileSummary summary = read_summary(partial(file));
   EXPECT_EQ(summary.status, "running");
   EXPECT_EQ(summary.frames, 2u);
@@ -245,20 +253,14 @@ TEST_F(H5mdWriterTest, FlushedFramesSurviveAKilledRun) {
 // removes the checkpoint once published.
 TEST_F(H5mdWriterTest, AFrameTornByAKillIsNotCountedAndAResumeDropsIt) {
   const fs::path file = dir_ / "run.h5";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
+  ASSERT_TRUE(in_a_killed_process([&] {
     H5mdWriter<3> writer(file, metadata(3), kRows);
     write_frames(writer, 1);
     StateArchive state;
     state.put("app/time", 0.25);
     writer.write_checkpoint(state);
     writer.write_frame(100, 0.5, grains_of<3>(1));
-    std::_Exit(0);  // no destructor, no close: as if the run were killed
-  }
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  }));
   {
     const hid_t f = H5Fopen(partial(file).c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     const hid_t step = H5Dopen2(f, "/particles/all/position/step", H5P_DEFAULT);

@@ -27,6 +27,7 @@ namespace fs = std::filesystem;
 
 const fs::path kCampaigns = fs::path(GRANJET_SCENES_DIR) / ".." / "campaigns";
 const std::string kSmoke = (kCampaigns / "smoke.ini").string();
+const std::string kOnlyJet3d = " --quiet --jobs 1 --only F5.3 --out ";
 
 class CampaignCommand : public CommandTest {
  protected:
@@ -96,6 +97,23 @@ class CampaignCommand : public CommandTest {
       _exit(127);
     }
     return pid;
+  }
+  // long_jet3d's group F5.3 run straight into `straight`, then the same campaign started in the
+  // background into `out`: its pid, or -1 when either failed.
+  pid_t after_a_straight_campaign(const fs::path& file, const fs::path& straight,
+                                  const fs::path& out) {
+    if (granjet("campaign " + file.string() + kOnlyJet3d + straight.string()) != 0) return -1;
+    return start_campaign(file, out);
+  }
+  // Calls `act` each time `partial` is seen to hold a checkpoint at t >= 3, until it returns
+  // true (every 5 ms, for at most 30 s); whether it did.
+  template <class Act>
+  static bool once_checkpointed(const fs::path& partial, Act act) {
+    for (int tries = 0; tries < 6000; ++tries) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      if (checkpointed(partial, 3.0) && act()) return true;
+    }
+    return false;
   }
   static void expect_same_jet3d(const fs::path& a, const fs::path& b) {
     for (const char* f : {"jet3d.seed1.h5", "jet3d.seed2.h5", "jet3d.h5"})
@@ -192,26 +210,17 @@ TEST_F(CampaignCommand, KilledCampaignRerunFinishesOnlyTheRestWithTheSameFiles) 
 // DIR is refused, and --status says where it stands.
 TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   const fs::path file = long_jet3d();
-  const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
   const fs::path straight = dir_ / "straight", stopped = dir_ / "stopped";
-  ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
-
-  const pid_t pid = start_campaign(file, stopped);
-  ASSERT_GE(pid, 0);
+  const pid_t pid = after_a_straight_campaign(file, straight, stopped);
+  ASSERT_GE(pid, 0) << err_;
   const fs::path partial = stopped / "jet3d" / "jet3d.seed1.h5.partial";
-  bool sent = false;
-  for (int tries = 0; tries < 6000 && !sent; ++tries) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    try {
-      if (!checkpointed(partial, 3.0)) continue;
-      // One campaign per DIR: a second one is refused while the first runs.
-      EXPECT_EQ(granjet("campaign " + file.string() + only + stopped.string()), 2);
-      EXPECT_NE(err_.find("is being run by another granjet campaign"), std::string::npos) << err_;
-      EXPECT_EQ(granjet("campaign " + file.string() + " --status --out " + stopped.string()), 0);
-      sent = kill(pid, SIGINT) == 0;
-    } catch (const std::exception&) {  // not written yet
-    }
-  }
+  const bool sent = once_checkpointed(partial, [&] {
+    // One campaign per DIR: a second one is refused while the first runs.
+    EXPECT_EQ(granjet("campaign " + file.string() + kOnlyJet3d + stopped.string()), 2);
+    EXPECT_NE(err_.find("is being run by another granjet campaign"), std::string::npos) << err_;
+    EXPECT_EQ(granjet("campaign " + file.string() + " --status --out " + stopped.string()), 0);
+    return kill(pid, SIGINT) == 0;
+  });
   int status = 0;
   waitpid(pid, &status, 0);
   ASSERT_TRUE(sent) << "the run ended before its campaign could be interrupted";
@@ -227,7 +236,7 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
   EXPECT_NE(said.find("not running"), std::string::npos) << said;
   EXPECT_NE(said.find("jet3d/jet3d.seed1: interrupted (exit code 130"), std::string::npos) << said;
 
-  ASSERT_EQ(granjet("campaign " + file.string() + only + stopped.string()), 0) << err_;
+  ASSERT_EQ(granjet("campaign " + file.string() + kOnlyJet3d + stopped.string()), 0) << err_;
   m = manifest(stopped);
   EXPECT_EQ(m["runs"]["jet3d/jet3d.seed1"]["status"], "complete");
   std::ifstream log(stopped / "jet3d" / "jet3d.seed1.log");
@@ -240,21 +249,15 @@ TEST_F(CampaignCommand, InterruptedCampaignResumesItsRunsToTheSameFiles) {
 // resumes from its checkpoint, and the campaign ends complete with the files of one never hit.
 TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
   const fs::path file = long_jet3d();
-  const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
   const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
-  ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
-  const pid_t pid = start_campaign(file, hit);
-  ASSERT_GE(pid, 0);
+  const pid_t pid = after_a_straight_campaign(file, straight, hit);
+  ASSERT_GE(pid, 0) << err_;
   // This campaign's run only, not another test's: [.] keeps the pattern from matching the shell
   // that runs pkill.
   const std::string kill =
       "pkill -KILL -f 'run " + (hit / "jet3d").string() + "/jet3d[.]seed1[.]ini'";
-  bool killed = false;
-  for (int tries = 0; tries < 6000 && !killed; ++tries) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    if (checkpointed(hit / "jet3d" / "jet3d.seed1.h5.partial", 3.0))
-      killed = std::system(kill.c_str()) == 0;
-  }
+  const bool killed = once_checkpointed(hit / "jet3d" / "jet3d.seed1.h5.partial",
+                                        [&] { return std::system(kill.c_str()) == 0; });
   int status = 0;
   waitpid(pid, &status, 0);
   ASSERT_TRUE(killed) << "the run ended before it could be killed";
@@ -276,17 +279,12 @@ TEST_F(CampaignCommand, AKilledRunGoesBackToTheQueueAndResumes) {
 // campaign never hit.
 TEST_F(CampaignCommand, ARunWhoseResumeFailsStartsAgainFromTheStart) {
   const fs::path file = long_jet3d();
-  const std::string only = " --quiet --jobs 1 --only F5.3 --out ";
   const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
-  ASSERT_EQ(granjet("campaign " + file.string() + only + straight.string()), 0) << err_;
-  const pid_t pid = start_campaign(file, hit);
-  ASSERT_GE(pid, 0);
+  const pid_t pid = after_a_straight_campaign(file, straight, hit);
+  ASSERT_GE(pid, 0) << err_;
   const fs::path partial = hit / "jet3d" / "jet3d.seed1.h5.partial";
-  bool killed = false;  // the campaign, and with it its run (PR_SET_PDEATHSIG)
-  for (int tries = 0; tries < 6000 && !killed; ++tries) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    if (checkpointed(partial, 3.0)) killed = kill(pid, SIGKILL) == 0;
-  }
+  // The campaign, and with it its run (PR_SET_PDEATHSIG).
+  const bool killed = once_checkpointed(partial, [&] { return kill(pid, SIGKILL) == 0; });
   waitpid(pid, nullptr, 0);
   ASSERT_TRUE(killed) << "the run ended before it could be killed";
   // The run dies just after its campaign: its lock on the .partial goes with it.
@@ -299,7 +297,7 @@ TEST_F(CampaignCommand, ARunWhoseResumeFailsStartsAgainFromTheStart) {
     H5Fclose(h5);
   }
   ASSERT_TRUE(analysis::read_summary(partial).checkpoint);  // it looks resumable
-  ASSERT_EQ(granjet("campaign " + file.string() + only + hit.string()), 0) << err_;
+  ASSERT_EQ(granjet("campaign " + file.string() + kOnlyJet3d + hit.string()), 0) << err_;
   std::ifstream report(dir_ / "stdout.txt");
   const std::string said{std::istreambuf_iterator<char>(report), {}};
   EXPECT_NE(said.find("jet3d/jet3d.seed1  could not be resumed ("), std::string::npos) << said;
@@ -353,10 +351,7 @@ pid_t rank_one(const std::string& pattern) {
 TEST_F(CampaignCommand, ALostMpiRankEndsTheJobAndARerunFinishesIt) {
   const fs::path file = long_jet3d();
   const fs::path straight = dir_ / "straight", hit = dir_ / "hit";
-  ASSERT_EQ(granjet("campaign " + file.string() + " --quiet --jobs 1 --only F5.3 --out " +
-                    straight.string()),
-            0)
-      << err_;
+  ASSERT_EQ(granjet("campaign " + file.string() + kOnlyJet3d + straight.string()), 0) << err_;
   const std::string cmd = std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe " +
                           "-n 2 " + GRANJET_BINARY + " campaign " + file.string() +
                           " --quiet --only F5.3 --out " + hit.string() + " > " +
@@ -379,10 +374,7 @@ TEST_F(CampaignCommand, ALostMpiRankEndsTheJobAndARerunFinishesIt) {
   waitpid(pid, &status, 0);
   ASSERT_TRUE(killed) << "the runs ended before a rank could be killed";
   EXPECT_NE(WEXITSTATUS(status), 0);  // the job ended
-  ASSERT_EQ(
-      granjet("campaign " + file.string() + " --quiet --jobs 1 --only F5.3 --out " + hit.string()),
-      0)
-      << err_;
+  ASSERT_EQ(granjet("campaign " + file.string() + kOnlyJet3d + hit.string()), 0) << err_;
   expect_same_jet3d(straight, hit);
 }
 #endif
