@@ -66,7 +66,7 @@ class H5mdFile {
   // Reopens a run's .partial at its checkpoint (checkpoint_file.hpp): frames and observables
   // written after it are dropped, and the status is "running" again.
   H5mdFile(std::filesystem::path path, int dimension);
-  void write_checkpoint(StateArchive archive);
+  void write_checkpoint(StateArchive archive, const ShareOfRank& share_of);
   void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);
   void write_frame(std::int64_t step, double time, const FrameRows& rows);
   std::size_t rows() const { return max_grains_; }
@@ -343,7 +343,8 @@ void H5mdFile::write_string_dataset(const char* name, const std::string& value) 
 H5mdFile::H5mdFile(std::filesystem::path path, int dimension)
     : path_(std::move(path)), ctx_(partial_path(path_)), dimension_(dimension) {
   lock_.emplace(ctx_.file());
-  const StateArchive checkpoint = read_checkpoint_file(checkpoint_path(path_));
+  // The root's entries alone: the writer's counts, not the grains.
+  const StateArchive checkpoint = read_checkpoint_file(checkpoint_path(path_), {0, 0});
   drop_fields_and_analysis();
   file_ = ctx_.own(H5Fopen(ctx_.file().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open",
                    "the HDF5 file");
@@ -487,12 +488,12 @@ void H5mdFile::truncate(Dataset& set, hsize_t rows) {
 
 // The checkpoint counts the frames and observables written so far, so that a resume drops those
 // written after it; they are on disk before it is.
-void H5mdFile::write_checkpoint(StateArchive archive) {
+void H5mdFile::write_checkpoint(StateArchive archive, const ShareOfRank& share_of) {
   require_open();
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
   archive.put("writer/frames", static_cast<std::int64_t>(sets_.frame_step.extent[0]));
   archive.put("writer/observable_rows", static_cast<std::int64_t>(sets_.observable_step.extent[0]));
-  write_checkpoint_file(checkpoint_path(path_), archive);
+  write_checkpoint_file(checkpoint_path(path_), archive, share_of);
 }
 
 void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows) {
@@ -664,8 +665,8 @@ H5mdWriter<D>::H5mdWriter(std::filesystem::path path, Resume)
     : file_(std::make_unique<detail::H5mdFile>(std::move(path), D)) {}
 
 template <int D>
-void H5mdWriter<D>::write_checkpoint(const StateArchive& archive) {
-  file_->write_checkpoint(archive);
+void H5mdWriter<D>::write_checkpoint(const StateArchive& archive, const ShareOfRank& share_of) {
+  file_->write_checkpoint(archive, share_of);
 }
 
 template <int D>

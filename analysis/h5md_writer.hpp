@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/checkpoint_file.hpp"
 #include "core/particles.hpp"
 #include "core/scene.hpp"
 #include "core/simulator.hpp"
@@ -96,8 +97,9 @@ class H5mdWriter {
   // Appends one row; it becomes durable with the next frame's flush or at the end.
   void write_observables(std::int64_t step, double time, const Observables& obs);
   // Flushes the file and stores the run's state, with the count of frames and observables so
-  // far, in the checkpoint file beside it (checkpoint_file.hpp), replacing the last one.
-  void write_checkpoint(const StateArchive& archive);
+  // far, in the checkpoint file beside it (checkpoint_file.hpp), replacing the last one; an
+  // archive split over ranks takes the other ranks' shares from `share_of`.
+  void write_checkpoint(const StateArchive& archive, const ShareOfRank& share_of = {});
   // The stored scenes (RunMetadata::scene_ini, requested_scene_ini), replaced: a resume that
   // extends run.t_end.
   void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);

@@ -125,6 +125,12 @@ class Simulator {
   // of the same scene and backend.
   virtual void checkpoint(StateArchive& out) = 0;
   virtual void restore(const StateArchive& in) = 0;
+  // Over MPI ranks, where checkpoint() gave rank 0 an archive split over them
+  // (StateArchive::split_over): rank `rank`'s share of it, on rank 0. Collective.
+  virtual StateArchive checkpoint_share(int rank) {
+    throw std::logic_error(std::string(backend()) + " holds no other rank's share (rank " +
+                           std::to_string(rank) + ")");
+  }
 
   // While *flag is set, advance_to returns early: after the current step (soft DEM) or event
   // (event-driven), with time() where it stopped. The app sets it from a signal handler.

@@ -87,6 +87,42 @@ class StateArchive {
   const Reals& all_reals() const { return reals_; }
   const Integers& all_integers() const { return integers_; }
 
+  // Over the K ranks of one run each rank's archive holds what all ranks hold alike and its own
+  // share of what is per grain and per contact: the entries whose names start with one of
+  // `share_prefixes`. A checkpoint stores rank 0's archive and every other rank's share beside
+  // it, gathered one rank at a time (analysis/checkpoint_file.hpp); a resume joins the shares it
+  // takes (append_share), so no rank ever holds the whole run.
+  void split_over(int ranks, std::vector<std::string> share_prefixes) {
+    ranks_ = ranks;
+    share_prefixes_ = std::move(share_prefixes);
+  }
+  int ranks() const { return ranks_; }  // 1: the archive is whole
+  bool in_share(const std::string& name) const {
+    for (const std::string& prefix : share_prefixes_)
+      if (name.starts_with(prefix)) return true;
+    return false;
+  }
+  // The share's entries alone.
+  StateArchive share() const {
+    StateArchive out;
+    for (const auto& [name, values] : reals_)
+      if (in_share(name)) out.put_reals(name, values);
+    for (const auto& [name, values] : integers_)
+      if (in_share(name)) out.put_integers(name, values);
+    return out;
+  }
+  // Each entry of `share` after this archive's entry of that name (made when missing).
+  void append_share(const StateArchive& share) {
+    for (const auto& [name, values] : share.reals_) {
+      std::vector<double>& mine = reals_[name];
+      mine.insert(mine.end(), values.begin(), values.end());
+    }
+    for (const auto& [name, values] : share.integers_) {
+      std::vector<std::int64_t>& mine = integers_[name];
+      mine.insert(mine.end(), values.begin(), values.end());
+    }
+  }
+
  private:
   template <class Row>
   static constexpr int width() {
@@ -110,6 +146,8 @@ class StateArchive {
 
   Reals reals_;
   Integers integers_;
+  int ranks_ = 1;
+  std::vector<std::string> share_prefixes_;
 };
 
 namespace detail {

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/archive_shares.hpp"
 #include "core/errors.hpp"
 #include "core/rank_team.hpp"
 #include "core/sample_region.hpp"
@@ -30,6 +31,7 @@ enum class RankOrder : int {
   kForces,
   kEnergy,
   kCheckpoint,
+  kCheckpointShare,
   kRestore,
   kProfile,
   kDone
@@ -37,7 +39,7 @@ enum class RankOrder : int {
 
 struct RankCall {
   RankOrder order = RankOrder::kDone;
-  double value = 0.0;   // advance_to's time
+  double value = 0.0;   // advance_to's time, checkpoint_share's rank
   SampleRegion region;  // particles_in's and collect_transfers_in's
 };
 
@@ -108,7 +110,11 @@ class RankLeader final : public Simulator<D> {
     call(RankOrder::kCheckpoint);
     sim_->checkpoint(out);
   }
-  // The followers restore the archive they were given (the same file).
+  StateArchive checkpoint_share(int rank) override {
+    call(RankOrder::kCheckpointShare, rank);
+    return share_on_rank0(ranks_, rank, StateArchive());
+  }
+  // The followers restore the archive they were given (their shares of the same file).
   void restore(const StateArchive& in) override {
     call(RankOrder::kRestore);
     sim_->restore(in);
@@ -129,9 +135,10 @@ class RankLeader final : public Simulator<D> {
 };
 
 // A rank other than 0: makes each call the leader makes, until it is done. `archive`: the
-// checkpoint a resumed run restores (the leader's own copy of it).
+// checkpoint a resumed run restores (this rank's read of it).
 template <int D>
 void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive* archive) {
+  StateArchive checkpoint;  // this rank's share of the last, until rank 0 takes it
   for (;;) {
     RankCall c;
     ranks.broadcast(c);
@@ -169,11 +176,14 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       case RankOrder::kEnergy:
         sim.energy();
         break;
-      case RankOrder::kCheckpoint: {
-        StateArchive ignored;
-        sim.checkpoint(ignored);
+      case RankOrder::kCheckpoint:
+        checkpoint = StateArchive();
+        sim.checkpoint(checkpoint);
         break;
-      }
+      case RankOrder::kCheckpointShare:
+        share_on_rank0(ranks, static_cast<int>(c.value), checkpoint);
+        if (c.value == ranks.rank()) checkpoint = StateArchive();
+        break;
       case RankOrder::kRestore:
         sim.restore(*archive);
         break;

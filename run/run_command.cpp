@@ -435,10 +435,11 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
   std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });
   if (leader) check_outputs(partial, outputs);  // rank 0 writes: the others would find its files
-  // Every rank reads it; rank 0 writes to it only once the simulator is made, which all ranks
-  // make together.
-  const StateArchive checkpoint =
-      analysis::read_checkpoint_file(analysis::checkpoint_path(partial));
+  // Every rank reads it, a checkpoint split over ranks only its shares of the grains; rank 0
+  // writes to it only once the simulator is made, which all ranks make together.
+  const RankTeam ranks = RankTeam::world();
+  const StateArchive checkpoint = analysis::read_checkpoint_file(analysis::checkpoint_path(partial),
+                                                                 {ranks.rank(), ranks.size()});
   if (!options.quiet && leader)
     out << "resuming " << out_file.string() << " at t = " << stored.checkpoint_time << "\n";
   return with_dimension(scene.dimension, [&](auto d) {

@@ -49,7 +49,7 @@ void write_checkpoint(Simulator<D>& sim, const RunObservers<D>& observers,
     StateWriter group = app.nested(o->state_group());
     o->save_state(group);
   }
-  writer.write_checkpoint(archive);
+  writer.write_checkpoint(archive, [&sim](int rank) { return sim.checkpoint_share(rank); });
 }
 
 template <int D>

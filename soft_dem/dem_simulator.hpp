@@ -94,7 +94,9 @@ class DemSimulator final : public Simulator<D> {
   // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
   std::vector<History> histories() const;
   void rebuild();
-  void rebuild(std::vector<History> history);
+  // partners_elsewhere: a restore over ranks, whose histories may name a partner grain that
+  // another rank read (see distribute).
+  void rebuild(std::vector<History> history, bool partners_elsewhere = false);
   // Over ranks: the grains `region` holds (all for none) into whole_ on rank 0. Collective.
   void gather_whole(const SampleRegion* region) const;
   // Over ranks: the cell frame of all grains (CellGrid::Frame) for pairs of reach `cut`, and a
@@ -112,8 +114,10 @@ class DemSimulator final : public Simulator<D> {
   // grains to their owners and the ghosts to the ranks that need them, with the histories of
   // their contacts (those for the grains held here come back in `history`). weight: each grain's
   // share of this rank's pass, for a re-cut of the parts (grain_weights(), when the balance looks
-  // at this rebuild).
-  void distribute(std::vector<History>& history, std::vector<double> weight);
+  // at this rebuild). partners_elsewhere: a history whose second grain is not here goes to the
+  // owner of its first, which then holds the second as a ghost and hands it on to its owner.
+  void distribute(std::vector<History>& history, std::vector<double> weight,
+                  bool partners_elsewhere = false);
   std::vector<double> grain_weights();
   GrainRecord<D> record_of(std::size_t i) const;
   // The contacts of the last pass in this rank's own rows.

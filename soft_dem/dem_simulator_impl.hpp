@@ -567,7 +567,8 @@ void DemSimulator<D, Law, kMono, Space>::rebuild() {
 // Rebuilds the neighbour list, re-sorting grains by cell for memory locality and carrying the
 // tangential history over by grain-id pair.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
+void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
+                                                 bool partners_elsewhere) {
   std::optional<PhaseProfile::Timer> timing(std::in_place, &this->profile(), phase_.rebuild_sort);
   if (contacts_pending_) {  // before the list they index changes
     stats_.contacts = own_contacts();
@@ -580,7 +581,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history) {
   remove_escaped(weight);
   if (over_ranks()) {
     timing.emplace(&this->profile(), phase_.rebuild_moves);
-    distribute(history, std::move(weight));
+    distribute(history, std::move(weight), partners_elsewhere);
     timing.emplace(&this->profile(), phase_.rebuild_sort);
   }
   const auto radius = p_.radius();
@@ -737,17 +738,26 @@ void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
   for (std::size_t c = 0; c < shear.size(); ++c)
     history.push_back({pair[2 * c], pair[2 * c + 1], shear[c]});
   if (tethered_) wall_.restore(a, "dem/tethers");
-  if (over_ranks()) {  // each rank read the whole checkpoint and hands on a share of it
+  bool partners_elsewhere = false;
+  if (over_ranks()) {
+    // Each rank read its shares of a checkpoint split over ranks (analysis/checkpoint_file.hpp)
+    // and hands on all its grains, or it read a whole one and hands on a run of it.
+    const bool read_shares = a.contains("checkpoint/readers");
+    if (read_shares && a.integer("checkpoint/readers") != domain_->ranks())
+      throw std::logic_error("the checkpoint's shares were read for another count of ranks");
     const GrainShare share{domain_->rank(), domain_->ranks()};
     std::vector<std::uint8_t> mine(n);
     std::vector<std::uint64_t> whole_index(n);
     for (std::size_t i = 0; i < n; ++i) {
-      mine[i] = share.holds(static_cast<std::int64_t>(i), static_cast<std::int64_t>(n));
-      whole_index[i] = i;  // the order the checkpoint holds them in, one rank's
+      mine[i] =
+          read_shares || share.holds(static_cast<std::int64_t>(i), static_cast<std::int64_t>(n));
+      // Until the rebuild sorts them: the whole checkpoint's order, or the ids.
+      whole_index[i] = read_shares ? static_cast<std::uint64_t>(p_.id()[i]) : i;
     }
     own_share(std::move(mine), std::move(whole_index));
+    partners_elsewhere = read_shares;
   }
-  rebuild(std::move(history));
+  rebuild(std::move(history), partners_elsewhere);
   step_ = a.integer("dem/step");
   first_step_ = a.integer("dem/first_step") != 0;
   removed_energy_ = a.real("dem/removed_energy");

@@ -79,7 +79,8 @@ GrainRecord<D> DemSimulator<D, Law, kMono, Space>::record_of(std::size_t i) cons
 
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& history,
-                                                    std::vector<double> weight) {
+                                                    std::vector<double> weight,
+                                                    bool partners_elsewhere) {
   Domain<D>& domain = *domain_;
   const RankTeam& team = domain.team();
   const std::size_t n = p_.size();
@@ -129,29 +130,45 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
     keep_owned.push_back(owner[i] == me);
   }
   // A contact's history goes to the owners of its grains, from the owner of its first.
-  std::vector<std::vector<HistoryRecord<D>>> history_to(domain.ranks());
-  std::vector<History> kept_history;
+  const auto record_of_history = [](const History& h) {
+    HistoryRecord<D> record{h.a, h.b, {}};
+    put<D>(record.shear, h.shear);
+    return record;
+  };
+  const auto history_of_record = [](const HistoryRecord<D>& r) -> History {
+    return {r.a, r.b, get<D, Vec<D>>(r.shear)};
+  };
+  std::vector<std::vector<HistoryRecord<D>>> history_to(domain.ranks()), partner_unseen_to;
+  if (partners_elsewhere) partner_unseen_to.resize(domain.ranks());
+  std::vector<History> kept_history, partner_unseen;
   kept_history.reserve(history.size());
   for (const History& h : history) {
     const std::uint32_t a = index_of_id_[h.a], b = index_of_id_[h.b];
-    if (a == kRemoved || b == kRemoved || !owned_[a]) continue;
+    if (a == kRemoved || !owned_[a]) continue;
+    if (b == kRemoved) {
+      if (!partners_elsewhere) continue;
+      if (owner[a] == me)
+        partner_unseen.push_back(h);
+      else
+        partner_unseen_to[owner[a]].push_back(record_of_history(h));
+      continue;
+    }
     const int owner_a = owner[a], owner_b = owned_[b] ? owner[b] : domain.owner_of(x[b]);
     const auto send = [&](int r) {
-      if (r == me) {
+      if (r == me)
         kept_history.push_back(h);
-        return;
-      }
-      HistoryRecord<D> record{h.a, h.b, {}};
-      put<D>(record.shear, h.shear);
-      history_to[r].push_back(record);
+      else
+        history_to[r].push_back(record_of_history(h));
     };
     send(owner_a);
     if (owner_b != owner_a) send(owner_b);
   }
   const std::vector<GrainRecord<D>> arrived = domain.move(to);
   history = std::move(kept_history);
-  for (const HistoryRecord<D>& r : domain.move(history_to))
-    history.push_back({r.a, r.b, get<D, Vec<D>>(r.shear)});
+  for (const HistoryRecord<D>& r : domain.move(history_to)) history.push_back(history_of_record(r));
+  if (partners_elsewhere)
+    for (const HistoryRecord<D>& r : domain.move(partner_unseen_to))
+      partner_unseen.push_back(history_of_record(r));
 
   // The kept grains stay in place or fill a dropped grain's (the rebuild's cell sort orders
   // them after), and the arrivals follow them.
@@ -177,6 +194,20 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
     if (shear) shear->push_back(get<D, Vec<D>>(g.plate_shear));
   }
   whole_fresh_ = false;
+  if (!partners_elsewhere) return;
+  // The first grain of each history whose partner was not here is now owned here, and the
+  // partner, within the contact's reach of it, is held here too (owned, or a ghost): the
+  // history goes on to the partner's owner. A partner held nowhere was removed, as above.
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
+  std::vector<std::vector<HistoryRecord<D>>> to_partner(domain.ranks());
+  for (const History& h : partner_unseen) {
+    const std::uint32_t b = index_of_id_[h.b];
+    if (b == kRemoved) continue;
+    history.push_back(h);
+    if (!owned_[b]) to_partner[domain.owner_of(p_.position()[b])].push_back(record_of_history(h));
+  }
+  for (const HistoryRecord<D>& r : domain.move(to_partner)) history.push_back(history_of_record(r));
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -404,55 +435,36 @@ Vec<D> get_row(const Row<N>& row, int at) {
   return v;
 }
 
-// The archive one rank writes: the grains and their per-grain state in its order, the
-// histories in its contact order.
+// This rank's archive, split over the ranks (StateArchive::split_over): what all ranks hold
+// alike, and as its share its own grains with their per-grain state, in its order, and the
+// contacts whose first grain it owns. Rank 0 stores the shares one rank at a time, so no rank
+// gathers the whole run; a resume on any count of ranks joins them, and its rebuild puts the
+// grains in the order of one rank (CellGrid orders by position and id alone).
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) {
   rebuild();
-  put_particles(a, "dem/grains", particles());
-  constexpr int S = kSpinWidth<D>;
-  std::vector<Vec<D>> force_prev;
-  for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
-         Row<D> row;
-         put_row<D, D>(row, 0, force_prev_[i]);
-         emit(row);
-       }))
-    force_prev.push_back(get_row<D, D>(r, 0));
-  std::vector<Spin<D>> torque_prev;
-  for (const Row<S>&r : in_whole_order_on_rank0<Row<S>>([&](std::size_t i, auto emit) {
-         Row<S> row;
-         std::memcpy(row.data(), &torque_prev_[i], sizeof(Spin<D>));
-         emit(row);
-       })) {
-    Spin<D> t;
-    std::memcpy(static_cast<void*>(&t), r.data(), sizeof(Spin<D>));
-    torque_prev.push_back(t);
-  }
-  std::vector<Vec<D>> plate_shear;
-  if (plate_ && plate_->keeps_shear())
-    for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
-           Row<D> row;
-           put_row<D, D>(row, 0, plate_->shear()[i]);
-           emit(row);
-         }))
-      plate_shear.push_back(get_row<D, D>(r, 0));
-  a.put_rows<Vec<D>>("dem/force_prev", force_prev);
-  a.put_rows<Spin<D>>("dem/torque_prev", torque_prev);
-  a.put_rows<Vec<D>>("dem/plate_shear", plate_shear);
-  // Each contact by the grain of its row, in the row's order.
-  std::vector<std::vector<History>> of_row(p_.size());
-  for (const History& h : histories()) of_row[index_of_id_[h.a]].push_back(h);
+  a.split_over(domain_->ranks(), {"dem/grains/", "dem/force_prev", "dem/torque_prev",
+                                  "dem/plate_shear", "dem/history/"});
+  std::vector<std::uint32_t> own;
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (owned_[i]) own.push_back(static_cast<std::uint32_t>(i));
+  const auto only_own = [&](auto values) {
+    Particles<D>::gather_one(values, own);
+    return values;
+  };
+  Particles<D> grains = p_;
+  grains.gather(own);
+  put_particles(a, "dem/grains", grains);
+  a.put_rows<Vec<D>>("dem/force_prev", only_own(force_prev_));
+  a.put_rows<Spin<D>>("dem/torque_prev", only_own(torque_prev_));
+  a.put_rows<Vec<D>>("dem/plate_shear", plate_ && plate_->keeps_shear() ? only_own(plate_->shear())
+                                                                        : std::vector<Vec<D>>());
   std::vector<GrainId> pair;
   std::vector<Vec<D>> shear;
-  for (const Row<2 + D>&r : in_whole_order_on_rank0<Row<2 + D>>([&](std::size_t i, auto emit) {
-         for (const History& h : of_row[i]) {
-           Row<2 + D> row{static_cast<double>(h.a), static_cast<double>(h.b)};
-           put_row<D, 2 + D>(row, 2, h.shear);
-           emit(row);
-         }
-       })) {
-    pair.insert(pair.end(), {static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1])});
-    shear.push_back(get_row<D, 2 + D>(r, 2));
+  for (const History& h : histories()) {
+    if (!owned_[index_of_id_[h.a]]) continue;
+    pair.insert(pair.end(), {h.a, h.b});
+    shear.push_back(h.shear);
   }
   put_histories_and_counters(a, pair, shear, stats());
 }

@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -110,6 +112,83 @@ TEST_F(CheckpointFile, AMissingOrForeignOneIsAnInputErrorNamingIt) {
   std::ofstream(text) << "not HDF5\n";
   EXPECT_THROW(read_checkpoint_file(text), InputError);
   EXPECT_FALSE(checkpoint_time(text).has_value());
+}
+
+// Rank r's piece of an archive split over `ranks`: the shared entries alike on every rank (only
+// rank 0's are stored), and a share of r + 1 grains with ids 10 r .. 10 r + r.
+StateArchive piece_of_rank(int r, int ranks) {
+  StateArchive archive;
+  archive.put("app/time", 3.0 + r);  // rank 0's must win
+  archive.put_integers("writer/frames", {7});
+  std::vector<std::int64_t> ids;
+  std::vector<double> x;
+  for (int k = 0; k <= r; ++k) {
+    ids.push_back(10 * r + k);
+    x.insert(x.end(), {1.0 / (r + 1), -0.0 * k});
+  }
+  archive.put_integers("dem/grains/id", ids);
+  archive.put_reals("dem/grains/position", x);
+  archive.put_reals("dem/history/shear", {});
+  archive.split_over(ranks, {"dem/grains/", "dem/history/"});
+  return archive;
+}
+
+std::vector<std::int64_t> ids_of_ranks(std::initializer_list<int> ranks) {
+  std::vector<std::int64_t> ids;
+  for (int r : ranks)
+    for (int k = 0; k <= r; ++k) ids.push_back(10 * r + k);
+  return ids;
+}
+
+TEST_F(CheckpointFile, SplitOverRanksEachReaderJoinsItsShares) {
+  const fs::path file = dir_ / "run.h5.checkpoint";
+  std::vector<int> asked;
+  write_checkpoint_file(file, piece_of_rank(0, 3), [&](int r) {
+    asked.push_back(r);
+    return piece_of_rank(r, 3).share();
+  });
+  EXPECT_EQ(asked, (std::vector<int>{1, 2}));
+  EXPECT_EQ(checkpoint_time(file), 3.0);
+
+  const StateArchive whole = read_checkpoint_file(file);  // one reader joins all, in rank order
+  EXPECT_EQ(whole.integers("dem/grains/id"), ids_of_ranks({0, 1, 2}));
+  EXPECT_EQ(whole.reals("dem/grains/position").size(), 2u * 6u);
+  EXPECT_EQ(bits(whole.reals("dem/grains/position")),
+            bits({1.0, -0.0, 0.5, -0.0, 0.5, -0.0, 1.0 / 3, -0.0, 1.0 / 3, -0.0, 1.0 / 3, -0.0}));
+  EXPECT_EQ(whole.real("app/time"), 3.0);
+  EXPECT_EQ(whole.integer("checkpoint/ranks"), 3);
+  EXPECT_FALSE(whole.contains("checkpoint/readers"));
+
+  // Three readers: each its own; two: the first takes shares 0 and 1 (s * 2 / 3 = 0), the
+  // second share 2; five: two take none and still find every entry, empty.
+  EXPECT_EQ(read_checkpoint_file(file, {1, 3}).integers("dem/grains/id"), ids_of_ranks({1}));
+  EXPECT_EQ(read_checkpoint_file(file, {0, 2}).integers("dem/grains/id"), ids_of_ranks({0, 1}));
+  EXPECT_EQ(read_checkpoint_file(file, {1, 2}).integers("dem/grains/id"), ids_of_ranks({2}));
+  std::vector<std::int64_t> taken;
+  for (int reader = 0; reader < 5; ++reader) {
+    const StateArchive mine = read_checkpoint_file(file, {reader, 5});
+    EXPECT_EQ(mine.integer("checkpoint/readers"), 5);
+    EXPECT_EQ(mine.reals("dem/grains/position").size(), 2 * mine.integers("dem/grains/id").size());
+    EXPECT_TRUE(mine.reals("dem/history/shear").empty());
+    const std::vector<std::int64_t>& ids = mine.integers("dem/grains/id");
+    taken.insert(taken.end(), ids.begin(), ids.end());
+  }
+  EXPECT_EQ(taken, ids_of_ranks({0, 1, 2}));
+
+  const StateArchive root = read_checkpoint_file(file, {0, 0});  // the writer's counts alone
+  EXPECT_EQ(root.integer("writer/frames"), 7);
+  EXPECT_TRUE(root.integers("dem/grains/id").empty());
+}
+
+TEST_F(CheckpointFile, AShareThatFailsToArriveKeepsTheLastOne) {
+  const fs::path file = dir_ / "run.h5.checkpoint";
+  write_checkpoint_file(file, sample(4.0));
+  EXPECT_THROW(write_checkpoint_file(
+                   file, piece_of_rank(0, 2),
+                   [](int) -> StateArchive { throw std::runtime_error("rank 1 is gone"); }),
+               std::runtime_error);
+  EXPECT_EQ(checkpoint_time(file), 4.0);
+  EXPECT_FALSE(fs::exists(dir_ / "run.h5.checkpoint.partial"));
 }
 
 }  // namespace

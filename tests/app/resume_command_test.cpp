@@ -25,14 +25,14 @@ namespace fs = std::filesystem;
 
 class Resume : public testing::CommandTest {
  protected:
-  // Starts `granjet ARGS` (stderr into the test's directory) and sends it `signals` once its
-  // .partial holds a checkpoint at `after` or later. Returns its wait status, or -1 if it ended
-  // first.
+  // Starts `LAUNCHER granjet ARGS` (stderr into the test's directory) and sends it `signals`
+  // once its .partial holds a checkpoint at `after` or later. Returns its wait status, or -1 if
+  // it ended first.
   int run_and_signal(const std::string& args, const fs::path& partial, double after,
-                     const std::vector<int>& signals) {
+                     const std::vector<int>& signals, const std::string& launcher = "") {
     const pid_t child = fork();
     if (child == 0) {
-      const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > /dev/null 2> " +
+      const std::string cmd = launcher + GRANJET_BINARY + " " + args + " > /dev/null 2> " +
                               (dir_ / "stderr.txt").string();
       execl("/bin/sh", "sh", "-c", ("exec " + cmd).c_str(), nullptr);
       _exit(127);
@@ -46,6 +46,10 @@ class Resume : public testing::CommandTest {
         const analysis::FileSummary s = analysis::read_summary(partial);
         if (s.checkpoint && s.checkpoint_time >= after) {
           for (int signal : signals) kill(child, signal);
+          if (!launcher.empty()) {  // the pattern matches no shell that runs pkill
+            const fs::path run = partial.parent_path() / partial.stem().stem();
+            std::system(("pkill -KILL -f '" + run.string() + "[.]h5'").c_str());
+          }
           sent = true;
         }
       } catch (const std::exception&) {
@@ -246,6 +250,42 @@ TEST_F(Resume, ResumeMayExtendTheRunAndNothingElse) {
 }
 
 #ifdef GRANJET_HAS_MPI
+// Root needs --allow-run-as-root; several ranks on a machine of any size need --oversubscribe.
+std::string mpiexec(int ranks) {
+  return std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe -n " +
+         std::to_string(ranks) + " ";
+}
+
+// A run over two ranks, killed (kill -9, every rank) after a checkpoint that holds each rank's
+// share of the grains apart, resumes on one process and over three ranks into the run one
+// process makes straight through.
+TEST_F(Resume, ACheckpointOverTwoRanksResumesOnOneProcessAndOverThree) {
+  const std::string base = "run " + scene("jet3d.ini") +
+                           " --quiet --set jet.grains=2000 --set wall.diameter=14"
+                           " --set contact.friction=0.5 --set run.t_end=8"
+                           " --set analysis.window_start=2 --set analysis.window_end=8"
+                           " --set run.checkpoint_interval=2 --set output.interval=1"
+                           " --set output.fields=position,velocity,radius,id,omega,force,contacts";
+  ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
+  const fs::path partial = dir_ / "over2.h5.partial";
+  // SIGKILL to mpiexec alone could leave its ranks running: every process whose command line
+  // names the run's file goes.
+  const int status = run_and_signal(base + paths("over2"), partial, 4.0, {}, mpiexec(2));
+  ASSERT_NE(status, -1) << "the run ended before it could be killed";
+  ASSERT_TRUE(fs::exists(analysis::checkpoint_path(partial)));
+  for (const int ranks : {1, 3}) {
+    const std::string name = "resumed_on" + std::to_string(ranks);
+    fs::copy_file(partial, dir_ / (name + ".h5.partial"));
+    fs::copy_file(analysis::checkpoint_path(partial), dir_ / (name + ".h5.checkpoint"));
+    const std::string cmd = (ranks > 1 ? mpiexec(ranks) : std::string()) + GRANJET_BINARY +
+                            " resume " + (dir_ / (name + ".h5.partial")).string() +
+                            " --quiet --summary " + (dir_ / (name + ".json")).string() + " > " +
+                            (dir_ / "resume.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << bytes_of(dir_ / "resume.txt");
+    expect_same_run("straight", name, true);
+  }
+}
+
 // A checkpoint written by one process resumes over two MPI ranks (mpirun -n 2 granjet resume)
 // into the run one process makes straight through.
 TEST_F(Resume, KilledRunResumesOverTwoRanks) {
@@ -259,11 +299,9 @@ TEST_F(Resume, KilledRunResumesOverTwoRanks) {
   const fs::path partial = dir_ / "killed.h5.partial";
   ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 4.0))
       << "the run ended before it could be killed";
-  // Root needs --allow-run-as-root; two ranks on a machine of any size need --oversubscribe.
-  const std::string cmd =
-      std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe -n 2 " + GRANJET_BINARY +
-      " resume " + partial.string() + " --quiet --summary " + (dir_ / "killed.json").string() +
-      " > " + (dir_ / "mpi.txt").string() + " 2>&1";
+  const std::string cmd = mpiexec(2) + GRANJET_BINARY + " resume " + partial.string() +
+                          " --quiet --summary " + (dir_ / "killed.json").string() + " > " +
+                          (dir_ / "mpi.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << bytes_of(dir_ / "mpi.txt");
   EXPECT_FALSE(fs::exists(partial));
   expect_same_run("straight", "killed", true);

@@ -11,12 +11,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "analysis/checkpoint_file.hpp"
+#include "core/archive_shares.hpp"
 #include "core/jet_geometry.hpp"
 #include "core/rank_team.hpp"
 #include "core/recursive_bisection.hpp"
@@ -331,35 +334,73 @@ TEST(Ranks, WorkBalanceCutsAnewWhenTheBusiestRankPassesTheMean) {
   EXPECT_EQ(balance.recuts(), 1);
 }
 
-// A checkpoint written over K ranks (rank 0's, the only whole one) resumes on one rank, and one
-// written on one rank resumes over K, each going on as the run that wrote it.
+// A checkpoint written over K ranks resumes on one rank, and one written on one rank resumes
+// over K, each going on as the run that wrote it. Over K ranks each rank's archive holds its own
+// share of the grains and contacts: rank 0 joins the others' to its own for one rank, and the
+// checkpoint file stores them apart, each rank reading back its own (its contacts' partners
+// may be another's).
 TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
+  const RankTeam world = RankTeam::world();
   const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
                                  {"jet.grains=2000", "wall.diameter=14", "contact.friction=0.5"});
   auto one = dem::make_dem_simulator<3>(scene);
-  auto spread = dem::make_dem_simulator<3>(scene, RankTeam::world());
+  auto spread = dem::make_dem_simulator<3>(scene, world);
   one->advance_to(2.0);
   spread->advance_to(2.0);
   StateArchive from_one, from_spread;
   one->checkpoint(from_one);
   spread->checkpoint(from_spread);
-  auto spread_resumed = dem::make_dem_simulator<3>(scene, RankTeam::world());
+  EXPECT_EQ(from_spread.ranks(), world.size());
+  StateArchive joined = from_spread;  // rank 0's and, in rank order, the others' shares
+  for (int r = 1; r < world.size(); ++r) joined.append_share(share_on_rank0(world, r, from_spread));
+
+  // The file, written by rank 0 as a run's is: rank r's share comes when asked for.
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() /
+      ("granjet_ranks_checkpoint_" + std::to_string(world.size()) + ".h5.checkpoint");
+  if (on_rank0())
+    analysis::write_checkpoint_file(file, from_spread,
+                                    [&](int r) { return share_on_rank0(world, r, from_spread); });
+  else
+    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, from_spread);
+  world.any(false);  // the file is whole before any rank reads it
+  const StateArchive mine = analysis::read_checkpoint_file(file, {world.rank(), world.size()});
+  world.any(false);
+  if (on_rank0()) std::filesystem::remove(file);
+  EXPECT_LT(mine.integers("dem/grains/id").size(), from_one.integers("dem/grains/id").size());
+  // Some contact's partner is another rank's to read: the resume hands its history on.
+  const std::vector<std::int64_t>& ids = mine.integers("dem/grains/id");
+  const std::vector<std::int64_t>& pairs = mine.integers("dem/history/pair");
+  bool partner_elsewhere = false;
+  for (std::size_t k = 1; k < pairs.size(); k += 2)
+    partner_elsewhere |= std::find(ids.begin(), ids.end(), pairs[k]) == ids.end();
+  EXPECT_TRUE(world.any(partner_elsewhere));
+
+  auto spread_resumed = dem::make_dem_simulator<3>(scene, world);
   spread_resumed->restore(from_one);
-  for (Simulator<3>* sim : {one.get(), spread.get(), spread_resumed.get()}) sim->advance_to(3.0);
+  auto spread_from_file = dem::make_dem_simulator<3>(scene, world);
+  spread_from_file->restore(mine);
+  for (Simulator<3>* sim : {one.get(), spread.get(), spread_resumed.get(), spread_from_file.get()})
+    sim->advance_to(3.0);
   const std::vector<double> expected = raw_state(one->particles());
   EXPECT_GT(one->stats().contacts, 10);
   expect_whole_on_rank0(expected, raw_state(spread->particles()), "the run over ranks");
   expect_whole_on_rank0(expected, raw_state(spread_resumed->particles()),
                         "resumed over ranks from one rank's checkpoint");
+  expect_whole_on_rank0(expected, raw_state(spread_from_file->particles()),
+                        "resumed over ranks, each rank from its share of the file");
   if (on_rank0()) {
     auto one_resumed = dem::make_dem_simulator<3>(scene);
-    one_resumed->restore(from_spread);
+    one_resumed->restore(joined);
     one_resumed->advance_to(3.0);
     EXPECT_EQ(expected, raw_state(one_resumed->particles()))
         << "resumed on one rank from the checkpoint over ranks";
   }
-  EXPECT_EQ(energies(one->energy()), energies(spread_resumed->energy()));
-  EXPECT_EQ(one->stats().particle_steps, spread_resumed->stats().particle_steps);
+  for (Simulator<3>* sim : {spread_resumed.get(), spread_from_file.get()}) {
+    EXPECT_EQ(energies(one->energy()), energies(sim->energy()));
+    EXPECT_EQ(one->stats().particle_steps, sim->stats().particle_steps);
+    EXPECT_EQ(one->stats().contacts, sim->stats().contacts);
+  }
 }
 
 }  // namespace
