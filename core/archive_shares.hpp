@@ -1,6 +1,7 @@
 // A rank's share of a checkpoint split over the ranks of one run (StateArchive::split_over)
 // travels to rank 0 as bytes, one rank at a time, so that rank 0 stores the shares without
-// ever holding more than one of them besides its own.
+// ever holding more than one of them besides its own. A rank makes its bytes as soon as it has
+// its share, while rank 0 stores its own, and keeps only them.
 #pragma once
 
 #include <cstddef>
@@ -38,13 +39,14 @@ void put_entry(std::vector<std::byte>& out, EntryKind kind, const std::string& n
 
 }  // namespace detail
 
-// Every entry, bit for bit: kind, name and values, one after another.
-inline std::vector<std::byte> archive_bytes(const StateArchive& archive) {
+// The share's entries of `archive` (StateArchive::in_share), bit for bit: kind, name and
+// values, one after another.
+inline std::vector<std::byte> share_bytes(const StateArchive& archive) {
   std::vector<std::byte> out;
   for (const auto& [name, values] : archive.all_reals())
-    detail::put_entry(out, detail::EntryKind::kReals, name, values);
+    if (archive.in_share(name)) detail::put_entry(out, detail::EntryKind::kReals, name, values);
   for (const auto& [name, values] : archive.all_integers())
-    detail::put_entry(out, detail::EntryKind::kIntegers, name, values);
+    if (archive.in_share(name)) detail::put_entry(out, detail::EntryKind::kIntegers, name, values);
   return out;
 }
 
@@ -79,12 +81,12 @@ inline StateArchive archive_from_bytes(std::span<const std::byte> bytes) {
   return archive;
 }
 
-// Rank `rank`'s share of its archive `mine`, on rank 0; an empty archive on the other ranks.
-// Collective over `team`.
-inline StateArchive share_on_rank0(const RankTeam& team, int rank, const StateArchive& mine) {
-  const std::vector<std::byte> sent =
-      team.rank() == rank ? archive_bytes(mine.share()) : std::vector<std::byte>();
-  const std::vector<std::byte> arrived = team.gather<std::byte>(sent);
+// Rank `rank`'s share, the share_bytes() it passes as `mine`, on rank 0; an empty archive on
+// the other ranks, whose `mine` is not sent. Collective over `team`.
+inline StateArchive share_on_rank0(const RankTeam& team, int rank,
+                                   std::span<const std::byte> mine) {
+  const std::vector<std::byte> arrived =
+      team.gather<std::byte>(team.rank() == rank ? mine : std::span<const std::byte>());
   if (team.rank() != 0) return {};
   return archive_from_bytes(arrived);
 }

@@ -5,6 +5,7 @@
 // call (its summary still asks for the energies) and leaves when the leader is done.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include <memory>
@@ -112,7 +113,7 @@ class RankLeader final : public Simulator<D> {
   }
   StateArchive checkpoint_share(int rank) override {
     call(RankOrder::kCheckpointShare, rank);
-    return share_on_rank0(ranks_, rank, StateArchive());
+    return share_on_rank0(ranks_, rank, {});
   }
   // The followers restore the archive they were given (their shares of the same file).
   void restore(const StateArchive& in) override {
@@ -138,7 +139,7 @@ class RankLeader final : public Simulator<D> {
 // checkpoint a resumed run restores (this rank's read of it).
 template <int D>
 void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive* archive) {
-  StateArchive checkpoint;  // this rank's share of the last, until rank 0 takes it
+  std::vector<std::byte> share;  // of the last checkpoint, until rank 0 takes it
   for (;;) {
     RankCall c;
     ranks.broadcast(c);
@@ -176,13 +177,15 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       case RankOrder::kEnergy:
         sim.energy();
         break;
-      case RankOrder::kCheckpoint:
-        checkpoint = StateArchive();
+      case RankOrder::kCheckpoint: {
+        StateArchive checkpoint;
         sim.checkpoint(checkpoint);
+        share = share_bytes(checkpoint);
         break;
+      }
       case RankOrder::kCheckpointShare:
-        share_on_rank0(ranks, static_cast<int>(c.value), checkpoint);
-        if (c.value == ranks.rank()) checkpoint = StateArchive();
+        share_on_rank0(ranks, static_cast<int>(c.value), share);
+        if (c.value == ranks.rank()) share = {};
         break;
       case RankOrder::kRestore:
         sim.restore(*archive);

@@ -1,5 +1,6 @@
 // A rank's share of a checkpoint split over ranks (core/archive_shares.hpp, StateArchive's
-// split_over): what it holds, its bytes back bit for bit, and a join in rank order.
+// split_over): what it holds, its bytes back bit for bit, and a join in rank order (the
+// travel to rank 0 is tested over ranks, tests/ranks).
 #include "core/archive_shares.hpp"
 
 #include <gtest/gtest.h>
@@ -42,14 +43,16 @@ TEST(ArchiveShares, AShareHoldsItsPrefixesEntriesAlone) {
   EXPECT_EQ(StateArchive().ranks(), 1);
 }
 
-TEST(ArchiveShares, BytesGiveBackEveryEntryBitForBit) {
+TEST(ArchiveShares, BytesGiveBackEveryShareEntryBitForBit) {
   const StateArchive a = piece(1.0 / 3.0);
-  const StateArchive back = archive_from_bytes(archive_bytes(a));
-  EXPECT_EQ(back.all_integers(), a.all_integers());
-  ASSERT_EQ(back.all_reals().size(), a.all_reals().size());
-  for (const auto& [name, values] : a.all_reals())
+  const StateArchive back = archive_from_bytes(share_bytes(a));
+  const StateArchive share = a.share();
+  EXPECT_EQ(back.all_integers(), share.all_integers());
+  ASSERT_EQ(back.all_reals().size(), share.all_reals().size());
+  for (const auto& [name, values] : share.all_reals())
     EXPECT_EQ(bits(back.reals(name)), bits(values)) << name;
-  std::vector<std::byte> cut = archive_bytes(a);
+  EXPECT_FALSE(back.contains("app/time"));
+  std::vector<std::byte> cut = share_bytes(a);
   cut.pop_back();
   EXPECT_THROW(archive_from_bytes(cut), std::runtime_error);
   EXPECT_TRUE(archive_from_bytes({}).all_reals().empty());

@@ -352,7 +352,8 @@ TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
   spread->checkpoint(from_spread);
   EXPECT_EQ(from_spread.ranks(), world.size());
   StateArchive joined = from_spread;  // rank 0's and, in rank order, the others' shares
-  for (int r = 1; r < world.size(); ++r) joined.append_share(share_on_rank0(world, r, from_spread));
+  const std::vector<std::byte> share = share_bytes(from_spread);
+  for (int r = 1; r < world.size(); ++r) joined.append_share(share_on_rank0(world, r, share));
 
   // The file, written by rank 0 as a run's is: rank r's share comes when asked for.
   const std::filesystem::path file =
@@ -360,9 +361,9 @@ TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
       ("granjet_ranks_checkpoint_" + std::to_string(world.size()) + ".h5.checkpoint");
   if (on_rank0())
     analysis::write_checkpoint_file(file, from_spread,
-                                    [&](int r) { return share_on_rank0(world, r, from_spread); });
+                                    [&](int r) { return share_on_rank0(world, r, share); });
   else
-    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, from_spread);
+    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, share);
   world.any(false);  // the file is whole before any rank reads it
   const StateArchive mine = analysis::read_checkpoint_file(file, {world.rank(), world.size()});
   world.any(false);
