@@ -42,9 +42,11 @@ FORWARD(write, (int fd, const void* buf, size_t n), (fd, buf, n))
 FORWARD(pwrite, (int fd, const void* buf, size_t n, off_t at), (fd, buf, n, at))
 FORWARD(pwrite64, (int fd, const void* buf, size_t n, off_t at), (fd, buf, n, at))
 
+/* Only a process that wrote reports: over MPI ranks, mpiexec and the ranks other than 0 also
+ * load the shim and write none of the run's files. */
 __attribute__((destructor)) static void report(void) {
   const char* file = getenv("GRANJET_WRITE_COUNT");
-  FILE* out = file ? fopen(file, "w") : NULL;
+  FILE* out = file && writes > 0 ? fopen(file, "w") : NULL;
   if (out == NULL) return;
   fprintf(out, "%ld\n", writes);
   fclose(out);

@@ -6,10 +6,12 @@ between two of HDF5's writes lands in the middle of a flush, where the file's me
 written; a signal sent from outside (chaos_campaign.py) rarely meets one. For --points values of
 N spread over the whole run, the killed run is resumed and its file compared with the straight
 run's (h5diff, every dataset and attribute). A run killed before its first checkpoint is
-written must be refused by resume (exit 2), and nothing else.
+written must be refused by resume (exit 2), and nothing else. With --ranks K the run is spread
+over K MPI ranks (rank 0 writes the files, and its kill ends the job), and the killed runs are
+resumed in turn on one process and over K ranks.
 
     /usr/bin/python3 tests/chaos/kill_at_write.py --granjet build/app/granjet \\
-        --shim build/tests/libgranjet_kill_at_write.so [--points 40]
+        --shim build/tests/libgranjet_kill_at_write.so [--points 40] [--ranks K --mpiexec PATH]
 """
 import argparse
 import os
@@ -35,11 +37,20 @@ def run_command(granjet, out):
     return command
 
 
+def over_ranks(args, ranks, command):
+    """`command` started as `ranks` MPI ranks (as root, on a machine of any size)."""
+    if ranks == 1:
+        return command
+    return [args.mpiexec, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + command
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--granjet", required=True)
     parser.add_argument("--shim", required=True)
     parser.add_argument("--points", type=int, default=40)
+    parser.add_argument("--ranks", type=int, default=1)
+    parser.add_argument("--mpiexec", default="mpiexec")
     args = parser.parse_args()
     granjet = str(Path(args.granjet).resolve())
     shim = str(Path(args.shim).resolve())
@@ -49,7 +60,8 @@ def main():
         subprocess.run(run_command(granjet, straight), check=True)
         counted = work / "writes.txt"
         env = dict(os.environ, LD_PRELOAD=shim, KILL_AT="0", GRANJET_WRITE_COUNT=str(counted))
-        subprocess.run(run_command(granjet, work / "counted.h5"), check=True, env=env)
+        subprocess.run(over_ranks(args, args.ranks, run_command(granjet, work / "counted.h5")),
+                       check=True, env=env)
         writes = int(counted.read_text())
         print(f"a run makes {writes} writes to its files; killed at {args.points} of them",
               flush=True)
@@ -58,13 +70,18 @@ def main():
             n = 1 + k * (writes - 1) // max(args.points - 1, 1)
             out = work / f"killed{n}.h5"
             env["KILL_AT"] = str(n)
-            killed = subprocess.run(run_command(granjet, out), env=env)
-            if killed.returncode != -9:
+            killed = subprocess.run(over_ranks(args, args.ranks, run_command(granjet, out)),
+                                    env=env, capture_output=args.ranks > 1)
+            # Over ranks mpiexec reports its rank's kill as a failure of its own.
+            if killed.returncode != -9 and (args.ranks == 1 or killed.returncode == 0):
                 failures.append(f"write {n}: the run was not killed (exit {killed.returncode})")
                 continue
             partial = Path(f"{out}.partial")
-            resumed = subprocess.run([granjet, "resume", str(partial), "--quiet", "--no-log"],
-                                     capture_output=True, text=True)
+            resume_ranks = args.ranks if k % 2 else 1
+            resumed = subprocess.run(
+                over_ranks(args, resume_ranks,
+                           [granjet, "resume", str(partial), "--quiet", "--no-log"]),
+                capture_output=True, text=True)
             # Refused (no checkpoint; killed at the first write, not even an HDF5 file yet).
             if resumed.returncode == 2 and not Path(f"{out}.checkpoint").exists():
                 outcomes["before its first checkpoint"] += 1
