@@ -68,6 +68,16 @@ class Resume : public testing::CommandTest {
     return status != -1 && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
   }
 
+  // A jet3d run of 2,000 grains to `t_end` with every kind of output: frames every unit of time
+  // with forces and contacts, a checkpoint every 2, inline analysis from t = 2.
+  static std::string small_jet3d_run(const std::string& t_end) {
+    return "run " + scene("jet3d.ini") +
+           " --quiet --set jet.grains=2000 --set wall.diameter=14 --set run.t_end=" + t_end +
+           " --set analysis.window_start=2 --set analysis.window_end=" + t_end +
+           " --set run.checkpoint_interval=2 --set output.interval=1"
+           " --set output.fields=position,velocity,radius,id,omega,force,contacts";
+  }
+
   // The output and summary options of a run named `name` in the test's directory.
   std::string paths(const std::string& name) const {
     return " --out " + (dir_ / (name + ".h5")).string() + " --summary " +
@@ -260,12 +270,7 @@ std::string mpiexec(int ranks) {
 // share of the grains apart, resumes on one process and over three ranks into the run one
 // process makes straight through.
 TEST_F(Resume, ACheckpointOverTwoRanksResumesOnOneProcessAndOverThree) {
-  const std::string base = "run " + scene("jet3d.ini") +
-                           " --quiet --set jet.grains=2000 --set wall.diameter=14"
-                           " --set contact.friction=0.5 --set run.t_end=8"
-                           " --set analysis.window_start=2 --set analysis.window_end=8"
-                           " --set run.checkpoint_interval=2 --set output.interval=1"
-                           " --set output.fields=position,velocity,radius,id,omega,force,contacts";
+  const std::string base = small_jet3d_run("8") + " --set contact.friction=0.5";
   ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
   const fs::path partial = dir_ / "over2.h5.partial";
   // SIGKILL to mpiexec alone could leave its ranks running: every process whose command line
@@ -289,12 +294,7 @@ TEST_F(Resume, ACheckpointOverTwoRanksResumesOnOneProcessAndOverThree) {
 // A checkpoint written by one process resumes over two MPI ranks (mpirun -n 2 granjet resume)
 // into the run one process makes straight through.
 TEST_F(Resume, KilledRunResumesOverTwoRanks) {
-  const std::string base = "run " + scene("jet3d.ini") +
-                           " --quiet --set jet.grains=2000 --set wall.diameter=14"
-                           " --set run.t_end=12 --set analysis.window_start=2"
-                           " --set analysis.window_end=12 --set run.checkpoint_interval=2"
-                           " --set output.interval=1"
-                           " --set output.fields=position,velocity,radius,id,omega,force,contacts";
+  const std::string base = small_jet3d_run("12");
   ASSERT_EQ(granjet(base + paths("straight")), 0) << err_;
   const fs::path partial = dir_ / "killed.h5.partial";
   ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 4.0))
