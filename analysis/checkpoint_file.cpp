@@ -162,10 +162,12 @@ StateArchive read_checkpoint_file(const std::filesystem::path& checkpoint, Share
   for (std::int64_t s = 0; s < ranks; ++s) {
     if (who.readers == 0 || s * who.readers / ranks != who.reader) continue;
     const std::string group = share_group(static_cast<int>(s));
-    StateArchive share;
-    for (const std::string& name : names)
-      if (name.starts_with(group)) read(name, share, name.substr(group.size()));
-    archive.append_share(share);
+    for (const std::string& name : names) {
+      if (!name.starts_with(group)) continue;
+      StateArchive entry;  // one dataset at a time: a share is never held twice
+      read(name, entry, name.substr(group.size()));
+      archive.append_share(entry);
+    }
   }
   if (who.readers > 1) archive.put(kReaders, std::int64_t{who.readers});
   return archive;
