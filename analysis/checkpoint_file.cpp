@@ -53,7 +53,8 @@ void write_file(const H5Context& ctx, const StateArchive& archive, const ShareOf
     StateArchive ranks;
     ranks.put(kRanks, std::int64_t{archive.ranks()});
     write_entries(ctx, file.get(), link_props.get(), ranks, "", everything);
-    write_entries(ctx, file.get(), link_props.get(), archive.share(), share_group(0), everything);
+    write_entries(ctx, file.get(), link_props.get(), archive, share_group(0),
+                  [&](const std::string& name) { return archive.in_share(name); });
     for (int r = 1; r < archive.ranks(); ++r)
       write_entries(ctx, file.get(), link_props.get(), share_of(r), share_group(r), everything);
   }

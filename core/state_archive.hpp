@@ -102,15 +102,6 @@ class StateArchive {
       if (name.starts_with(prefix)) return true;
     return false;
   }
-  // The share's entries alone.
-  StateArchive share() const {
-    StateArchive out;
-    for (const auto& [name, values] : reals_)
-      if (in_share(name)) out.put_reals(name, values);
-    for (const auto& [name, values] : integers_)
-      if (in_share(name)) out.put_integers(name, values);
-    return out;
-  }
   // Each entry of `share` after this archive's entry of that name (made when missing).
   void append_share(const StateArchive& share) {
     for (const auto& [name, values] : share.reals_) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/archive_shares.hpp"
 #include "core/errors.hpp"
 
 namespace granjet::analysis {
@@ -145,7 +146,7 @@ TEST_F(CheckpointFile, SplitOverRanksEachReaderJoinsItsShares) {
   std::vector<int> asked;
   write_checkpoint_file(file, piece_of_rank(0, 3), [&](int r) {
     asked.push_back(r);
-    return piece_of_rank(r, 3).share();
+    return archive_from_bytes(share_bytes(piece_of_rank(r, 3)));
   });
   EXPECT_EQ(asked, (std::vector<int>{1, 2}));
   EXPECT_EQ(checkpoint_time(file), 3.0);
