@@ -46,17 +46,20 @@ namespace detail {
 
 class H5mdFile {
  public:
-  // One frame: every grain in the row of its id (fill values in the rows of removed grains),
-  // the rows present, and the touching pairs.
-  struct FrameRows {
-    std::vector<GrainId> id;       // [rows]
+  // A stretch of a frame's rows, ids first..first+count-1: each grain in the row of its id
+  // (fill values in the rows of grains not there), and the ids there, ascending.
+  struct GrainRows {
+    std::vector<GrainId> id;       // [count]
     std::vector<GrainId> present;  // ascending
-    std::vector<double> position;  // row-major [rows][dimension]
+    std::vector<double> position;  // row-major [count][dimension]
     std::vector<double> velocity;
     std::vector<double> radius;
-    std::vector<double> omega;                           // [rows][spin width], when stored
-    std::vector<double> force;                           // [rows][dimension], when stored
-    std::vector<GrainId> pairs;                          // [contacts][2], when stored
+    std::vector<double> omega;  // [count][spin width], when stored
+    std::vector<double> force;  // [count][dimension], when stored
+  };
+  // A frame's touching pairs, when stored.
+  struct ContactRows {
+    std::vector<GrainId> pairs;                          // [contacts][2]
     std::vector<double> normal_force, tangential_force;  // [contacts][dimension]
     std::vector<double> overlap;                         // [contacts]
   };
@@ -68,7 +71,13 @@ class H5mdFile {
   H5mdFile(std::filesystem::path path, int dimension);
   void write_checkpoint(StateArchive archive, const ShareOfRank& share_of);
   void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);
-  void write_frame(std::int64_t step, double time, const FrameRows& rows);
+  // A frame: begin_frame(), its rows in ascending stretches, end_frame().
+  void begin_frame();
+  void write_grains(hsize_t first, hsize_t count, const GrainRows& rows);
+  // Returns the frame's grain count.
+  std::size_t end_frame(std::int64_t step, double time, const ContactRows& contacts);
+  // Drops what a frame that failed half-way wrote: the file holds the frames before it.
+  void drop_frame();
   std::size_t rows() const { return max_grains_; }
   // Which optional per-frame data the file stores.
   struct Content {
@@ -115,6 +124,8 @@ class H5mdFile {
   // H5MD lets elements sampled together share one step and one time dataset.
   void share_step_and_time(const std::string& from, const std::string& to) const;
   void append(Dataset& set, hsize_t valid, hid_t type, const void* data);
+  // Writes `count` grains from grain `first` on into the last row of `set`.
+  void write_last_row(Dataset& set, hsize_t first, hsize_t count, hid_t type, const void* data);
   // Widens the second axis of `set` (the contacts of a frame) to at least `width`.
   void widen(Dataset& set, hsize_t width);
   void write_unit(const std::string& dataset, const char* quantity) const;
@@ -141,6 +152,9 @@ class H5mdFile {
   H5Handle link_props_;
   Datasets sets_;
   std::vector<XdmfFrame> frames_;
+  // The frame being written: the grains present in it so far, and the first row not yet written.
+  hsize_t frame_present_ = 0;
+  hsize_t frame_rows_done_ = 0;
   std::vector<double> box_;      // periodic edges, stored with every frame
   double frame_interval_ = 1.0;  // the dt observable
 };
@@ -496,24 +510,44 @@ void H5mdFile::write_checkpoint(StateArchive archive, const ShareOfRank& share_o
   write_checkpoint_file(checkpoint_path(path_), archive, share_of);
 }
 
-void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows) {
+// Every per-grain series gets a row of fill values, which the frame's stretches then fill.
+void H5mdFile::begin_frame() {
   require_open();
-  const hsize_t n = rows.present.size();
+  for (Dataset* set : {&sets_.position, &sets_.velocity, &sets_.radius, &sets_.id, &sets_.present})
+    append(*set, 0, H5T_NATIVE_DOUBLE, nullptr);
+  for (std::optional<Dataset>* set : {&sets_.omega, &sets_.force})
+    if (*set) append(**set, 0, H5T_NATIVE_DOUBLE, nullptr);
+  frame_present_ = 0;
+  frame_rows_done_ = 0;
+}
+
+void H5mdFile::write_grains(hsize_t first, hsize_t count, const GrainRows& rows) {
+  require_open();
+  if (first < frame_rows_done_ || first + count > max_grains_)
+    throw std::logic_error("H5mdWriter: rows " + std::to_string(first) + ".." +
+                           std::to_string(first + count) + " of a frame come out of order");
+  frame_rows_done_ = first + count;
+  write_last_row(sets_.position, first, count, H5T_NATIVE_DOUBLE, rows.position.data());
+  write_last_row(sets_.velocity, first, count, H5T_NATIVE_DOUBLE, rows.velocity.data());
+  write_last_row(sets_.radius, first, count, H5T_NATIVE_DOUBLE, rows.radius.data());
+  write_last_row(sets_.id, first, count, H5T_NATIVE_INT64, rows.id.data());
+  if (sets_.omega) write_last_row(*sets_.omega, first, count, H5T_NATIVE_DOUBLE, rows.omega.data());
+  if (sets_.force) write_last_row(*sets_.force, first, count, H5T_NATIVE_DOUBLE, rows.force.data());
+  write_last_row(sets_.present, frame_present_, rows.present.size(), H5T_NATIVE_INT64,
+                 rows.present.data());
+  frame_present_ += rows.present.size();
+}
+
+std::size_t H5mdFile::end_frame(std::int64_t step, double time, const ContactRows& rows) {
+  require_open();
   const hsize_t contacts = rows.overlap.size();
-  const auto grains = static_cast<std::int64_t>(n);
+  const auto grains = static_cast<std::int64_t>(frame_present_);
   const auto contact_count = static_cast<std::int64_t>(contacts);
   append(sets_.frame_step, 1, H5T_NATIVE_INT64, &step);
   append(sets_.frame_time, 1, H5T_NATIVE_DOUBLE, &time);
   append(sets_.frame_grains, 1, H5T_NATIVE_INT64, &grains);
   append(sets_.frame_contacts, 1, H5T_NATIVE_INT64, &contact_count);
   append(sets_.dt, 1, H5T_NATIVE_DOUBLE, &frame_interval_);
-  append(sets_.position, max_grains_, H5T_NATIVE_DOUBLE, rows.position.data());
-  append(sets_.velocity, max_grains_, H5T_NATIVE_DOUBLE, rows.velocity.data());
-  append(sets_.radius, max_grains_, H5T_NATIVE_DOUBLE, rows.radius.data());
-  append(sets_.id, max_grains_, H5T_NATIVE_INT64, rows.id.data());
-  append(sets_.present, n, H5T_NATIVE_INT64, rows.present.data());
-  if (sets_.omega) append(*sets_.omega, max_grains_, H5T_NATIVE_DOUBLE, rows.omega.data());
-  if (sets_.force) append(*sets_.force, max_grains_, H5T_NATIVE_DOUBLE, rows.force.data());
   if (sets_.box) {
     std::vector<double> edges(dimension_ * dimension_, 0.0);
     for (int k = 0; k < dimension_; ++k) edges[k * (dimension_ + 1)] = box_[k];
@@ -530,7 +564,15 @@ void H5mdFile::write_frame(std::int64_t step, double time, const FrameRows& rows
   }
   // A run killed later still leaves this frame readable.
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
-  frames_.push_back({time, n, contacts});
+  frames_.push_back({time, frame_present_, contacts});
+  return frame_present_;
+}
+
+void H5mdFile::drop_frame() {
+  require_open();
+  const hsize_t frames = sets_.frame_step.extent[0];
+  for (Dataset* set : sets_.per_frame())
+    if (set->extent[0] > frames) truncate(*set, frames);
 }
 
 void H5mdFile::write_observables(std::int64_t step, double time, const Observables& obs) {
@@ -623,20 +665,28 @@ void H5mdFile::share_step_and_time(const std::string& from, const std::string& t
 // Grows `set` by one row and writes `data` into its first `valid` grains (the whole row of a
 // scalar series); the rest of the row keeps the fill value.
 void H5mdFile::append(Dataset& set, hsize_t valid, hid_t type, const void* data) {
-  std::vector<hsize_t> start(set.extent.size(), 0);
-  std::vector<hsize_t> count = set.extent;
-  start[0] = set.extent[0];
-  count[0] = 1;
-  if (count.size() > 1) count[1] = valid;
   ++set.extent[0];
   ctx_.check(H5Dset_extent(set.handle.get(), set.extent.data()), "extend", set.name);
-  if (valid == 0) return;  // a frame without grains is all fill values
+  write_last_row(set, 0, set.extent.size() > 1 ? valid : 1, type, data);
+}
+
+void H5mdFile::write_last_row(Dataset& set, hsize_t first, hsize_t count, hid_t type,
+                              const void* data) {
+  if (count == 0) return;  // the rows keep their fill values
+  std::vector<hsize_t> start(set.extent.size(), 0);
+  std::vector<hsize_t> shape = set.extent;
+  start[0] = set.extent[0] - 1;
+  shape[0] = 1;
+  if (shape.size() > 1) {
+    start[1] = first;
+    shape[1] = count;
+  }
   const H5Handle file_space =
       ctx_.own(H5Dget_space(set.handle.get()), H5Sclose, "get the dataspace of", set.name);
   ctx_.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
-                                 count.data(), nullptr),
+                                 shape.data(), nullptr),
              "select a row of", set.name);
-  ctx_.check(H5Dwrite(set.handle.get(), type, ctx_.dataspace(count).get(), file_space.get(),
+  ctx_.check(H5Dwrite(set.handle.get(), type, ctx_.dataspace(shape).get(), file_space.get(),
                       H5P_DEFAULT, data),
              "write", set.name);
 }
@@ -678,53 +728,117 @@ void H5mdWriter<D>::replace_scenes(const std::string& scene_ini,
 template <int D>
 H5mdWriter<D>::~H5mdWriter() = default;
 
+namespace {
+
+// A frame's grains and contacts as the file's rows, one stretch of ids at a time.
+template <int D>
+class FrameRowsSink final : public FrameSink<D> {
+ public:
+  explicit FrameRowsSink(detail::H5mdFile& file) : file_(file), content_(file.content()) {}
+
+  void grains(GrainId first, GrainId end, const Particles<D>& grains,
+              std::span<const Vec<D>> force) override {
+    const auto rows = static_cast<GrainId>(file_.rows());
+    const std::size_t count = static_cast<std::size_t>(end - first);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    constexpr std::size_t kSpin = D == 3 ? 3 : 1;
+    if (content_.force && force.size() != grains.size())
+      throw std::logic_error("H5mdWriter: this file stores forces; the frame has none");
+    detail::H5mdFile::GrainRows& f = rows_;
+    f.id.assign(count, -1);
+    f.present.clear();
+    f.position.assign(count * D, nan);
+    f.velocity.assign(count * D, nan);
+    f.radius.assign(count, nan);
+    f.omega.assign(content_.omega ? count * kSpin : 0, nan);
+    f.force.assign(content_.force ? count * D : 0, nan);
+    const auto ids = grains.id();
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const GrainId id = ids[k];
+      if (id < 0 || id >= rows)
+        throw std::invalid_argument("H5mdWriter: grain id " + std::to_string(id) +
+                                    " has no row (ids 0.." + std::to_string(rows - 1) + ")");
+      if (id < first || id >= end)
+        throw std::logic_error("H5mdWriter: grain id " + std::to_string(id) +
+                               " came with the rows " + std::to_string(first) + ".." +
+                               std::to_string(end - 1));
+      const auto r = static_cast<std::size_t>(id - first);
+      f.id[r] = id;
+      std::copy_n(grains.position()[k].data(), D, &f.position[r * D]);
+      std::copy_n(grains.velocity()[k].data(), D, &f.velocity[r * D]);
+      f.radius[r] = grains.radius()[k];
+      if (content_.omega) {
+        if constexpr (D == 3)
+          std::copy_n(grains.spin()[k].data(), 3, &f.omega[r * 3]);
+        else
+          f.omega[r] = grains.spin()[k];
+      }
+      if (content_.force) std::copy_n(force[k].data(), D, &f.force[r * D]);
+    }
+    for (std::size_t r = 0; r < count; ++r)
+      if (f.id[r] >= 0) f.present.push_back(f.id[r]);
+    file_.write_grains(static_cast<hsize_t>(first), count, f);
+  }
+
+  void contacts(std::span<const typename ForceSample<D>::Contact> contacts) override {
+    if (!content_.contacts) return;
+    // Pairs only: a contact with the plate (j = kPlateId) has no partner row to draw.
+    for (const auto& c : contacts) {
+      if (c.j == kPlateId) continue;
+      contacts_.pairs.insert(contacts_.pairs.end(), {c.i, c.j});
+      contacts_.normal_force.insert(contacts_.normal_force.end(), c.normal_force.data(),
+                                    c.normal_force.data() + D);
+      contacts_.tangential_force.insert(contacts_.tangential_force.end(), c.tangential_force.data(),
+                                        c.tangential_force.data() + D);
+      contacts_.overlap.push_back(c.overlap);
+    }
+  }
+
+  const detail::H5mdFile::ContactRows& contact_rows() const { return contacts_; }
+
+ private:
+  detail::H5mdFile& file_;
+  detail::H5mdFile::Content content_;
+  detail::H5mdFile::GrainRows rows_;  // one stretch's, its memory kept for the next
+  detail::H5mdFile::ContactRows contacts_;
+};
+
+}  // namespace
+
 template <int D>
 void H5mdWriter<D>::write_frame(std::int64_t step, double time, const Particles<D>& particles,
                                 const ForceSample<D>* forces) {
-  const std::size_t rows = file_->rows();
-  const auto ids = particles.id();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  constexpr std::size_t kSpin = D == 3 ? 3 : 1;
-  detail::H5mdFile::FrameRows f;
-  f.id.assign(rows, -1);
-  f.position.assign(rows * D, nan);
-  f.velocity.assign(rows * D, nan);
-  f.radius.assign(rows, nan);
-  const auto& content = file_->content();
-  if (content.omega) f.omega.assign(rows * kSpin, nan);
-  if (content.force) f.force.assign(rows * D, nan);
+  const auto content = file_->content();
   if ((content.force || content.contacts) && forces == nullptr)
     throw std::logic_error("H5mdWriter: this file stores forces; write_frame needs them");
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    const GrainId r = ids[k];
-    if (r < 0 || static_cast<std::size_t>(r) >= rows)
-      throw std::invalid_argument("H5mdWriter: grain id " + std::to_string(r) +
-                                  " has no row (ids 0.." + std::to_string(rows - 1) + ")");
-    f.id[r] = r;
-    std::copy_n(particles.position()[k].data(), D, &f.position[r * D]);
-    std::copy_n(particles.velocity()[k].data(), D, &f.velocity[r * D]);
-    f.radius[r] = particles.radius()[k];
-    if (content.omega) {
-      if constexpr (D == 3)
-        std::copy_n(particles.spin()[k].data(), 3, &f.omega[r * 3]);
-      else
-        f.omega[r] = particles.spin()[k];
-    }
-    if (content.force) std::copy_n(forces->total[k].data(), D, &f.force[r * D]);
+  write_frame(step, time, [&](FrameSink<D>& sink) {
+    sink.grains(0, static_cast<GrainId>(file_->rows()), particles,
+                content.force ? std::span<const Vec<D>>(forces->total) : std::span<const Vec<D>>());
+    if (content.contacts) sink.contacts(forces->contacts);
+  });
+}
+
+template <int D>
+std::size_t H5mdWriter<D>::write_frame(std::int64_t step, double time, const Simulator<D>& sim,
+                                       std::size_t block_rows) {
+  const auto content = file_->content();
+  return write_frame(step, time, [&](FrameSink<D>& sink) {
+    sim.frame({file_->rows(), block_rows, content.force, content.contacts}, sink);
+  });
+}
+
+template <int D>
+std::size_t H5mdWriter<D>::write_frame(std::int64_t step, double time,
+                                       const std::function<void(FrameSink<D>&)>& fill) {
+  FrameRowsSink<D> sink(*file_);
+  file_->begin_frame();
+  try {
+    fill(sink);
+  } catch (...) {
+    file_->drop_frame();
+    throw;
   }
-  for (std::size_t r = 0; r < rows; ++r)
-    if (f.id[r] >= 0) f.present.push_back(f.id[r]);
-  if (content.contacts)
-    // Pairs only: a contact with the plate (j = kPlateId) has no partner row to draw.
-    for (const auto& c : forces->contacts) {
-      if (c.j == kPlateId) continue;
-      f.pairs.insert(f.pairs.end(), {c.i, c.j});
-      f.normal_force.insert(f.normal_force.end(), c.normal_force.data(), c.normal_force.data() + D);
-      f.tangential_force.insert(f.tangential_force.end(), c.tangential_force.data(),
-                                c.tangential_force.data() + D);
-      f.overlap.push_back(c.overlap);
-    }
-  file_->write_frame(step, time, f);
+  return file_->end_frame(step, time, sink.contact_rows());
 }
 
 template <int D>

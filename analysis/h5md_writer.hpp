@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,10 +91,19 @@ class H5mdWriter {
   // status "running" and every frame written so far.
   ~H5mdWriter();
 
+  // Ids per stretch of a frame's rows taken at once from a simulator: 32 chunks, some 50 MB of
+  // grains in 3D, so that rank 0 of a run over MPI ranks holds that much of a frame at a time.
+  static constexpr std::size_t kFrameBlockRows = std::size_t{1} << 19;
+
   // Stores each grain in the row of its id and flushes, so the frame survives a later crash.
   // `forces` (the same instant's) is required when RunMetadata asked for force or contacts.
   void write_frame(std::int64_t step, double time, const Particles<D>& particles,
                    const ForceSample<D>* forces = nullptr);
+  // The frame of `sim` (Simulator::frame), taken in stretches of at most block_rows ids, with
+  // the forces and contacts the file stores; returns its grain count. Over MPI ranks rank 0
+  // calls it (through RankLeader), and no rank holds more than a stretch of it.
+  std::size_t write_frame(std::int64_t step, double time, const Simulator<D>& sim,
+                          std::size_t block_rows = kFrameBlockRows);
   // Appends one row; it becomes durable with the next frame's flush or at the end.
   void write_observables(std::int64_t step, double time, const Observables& obs);
   // Flushes the file and stores the run's state, with the count of frames and observables so
@@ -116,6 +126,10 @@ class H5mdWriter {
   std::filesystem::path abandon(const std::string& reason);
 
  private:
+  // A frame that `fill` hands to a sink; one that fails half-way leaves nothing of itself.
+  std::size_t write_frame(std::int64_t step, double time,
+                          const std::function<void(FrameSink<D>&)>& fill);
+
   std::unique_ptr<detail::H5mdFile> file_;
 };
 

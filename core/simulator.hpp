@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -42,6 +43,27 @@ struct ForceSample {
   std::vector<Contact> contacts;
   // Each grain's total force (contacts, plate, tethers), in the order of particles().
   std::vector<Vec<D>> total;
+};
+
+// What a frame asks of the simulator (Simulator::frame).
+struct FrameAsk {
+  std::size_t rows = 0;        // grain ids 0..rows-1
+  std::size_t block_rows = 0;  // ids per block: over MPI ranks, rank 0 holds no more grains
+  bool force = false;          // each grain's total force
+  bool contacts = false;       // the touching pairs, with their forces
+};
+
+// Where a frame goes: its grains one block of ids at a time, the blocks in ascending order,
+// then its contacts.
+template <int D>
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  // The grains whose ids lie in [first, end), in any order; `force`, when asked, their total
+  // forces in the same order (empty otherwise).
+  virtual void grains(GrainId first, GrainId end, const Particles<D>& grains,
+                      std::span<const Vec<D>> force) = 0;
+  virtual void contacts(std::span<const typename ForceSample<D>::Contact> contacts) = 0;
 };
 
 struct SimStats {
@@ -89,6 +111,8 @@ class Simulator {
   virtual void advance_to(double t) = 0;
   virtual double time() const = 0;
   virtual const Particles<D>& particles() const = 0;
+  // particles().size(), which over MPI ranks needs no grain gathered.
+  virtual std::size_t grain_count() const { return particles().size(); }
   // At least the grains `region` holds (core/sample_region.hpp), in particles()'s order: a look
   // that needs only those need not gather the rest over MPI ranks. Without ranks, and by
   // default, particles() itself.
@@ -118,6 +142,16 @@ class Simulator {
     throw std::logic_error(std::string(backend()) + " has no contact forces");
   }
   virtual EnergyBalance energy() const = 0;
+  // The grains and forces a frame stores, handed to `sink` in blocks of ask.block_rows ids or
+  // fewer (one process may hand all in one block). Over MPI ranks collective, and only rank
+  // 0's sink hears of it, one block at a time: no rank gathers the whole run.
+  virtual void frame(const FrameAsk& ask, FrameSink<D>& sink) const {
+    ForceSample<D> forces;
+    if (ask.force || ask.contacts) sample_forces(forces);
+    sink.grains(0, static_cast<GrainId>(ask.rows), particles(),
+                ask.force ? std::span<const Vec<D>>(forces.total) : std::span<const Vec<D>>());
+    if (ask.contacts) sink.contacts(forces.contacts);
+  }
   // Checkpoint: brings the state into a form that a simulator built anew from the same scene
   // takes over exactly (soft DEM: a neighbour-list rebuild; event-driven: every grain at one
   // time and the calendar predicted anew), then stores it. The run goes on bit-identically

@@ -4,10 +4,9 @@ namespace granjet {
 namespace {
 
 template <int D>
-analysis::Observables observables(const Simulator<D>& sim) {
+analysis::Observables observables(const Simulator<D>& sim, std::size_t grains) {
   const EnergyBalance e = sim.energy();
-  return {e.kinetic, e.rotational, e.elastic, e.dissipated,
-          static_cast<std::int64_t>(sim.particles().size())};
+  return {e.kinetic, e.rotational, e.elastic, e.dissipated, static_cast<std::int64_t>(grains)};
 }
 
 // The H5MD step of a frame: DEM counts time steps, the event-driven backend events.
@@ -19,8 +18,7 @@ template <int D>
 FrameOutput<D>::FrameOutput(analysis::H5mdWriter<D>& writer, const Scene& scene)
     : writer_(writer),
       schedule_(IntervalSchedule::every(scene.output.interval, 0.5 * scene.dt())),
-      t_end_(scene.run.t_end),
-      sample_forces_(scene.output.force || scene.output.contacts) {}
+      t_end_(scene.run.t_end) {}
 
 template <int D>
 void FrameOutput<D>::observe(Simulator<D>& sim) {
@@ -38,9 +36,8 @@ void FrameOutput<D>::finish(Simulator<D>& sim) {
 
 template <int D>
 void FrameOutput<D>::write(Simulator<D>& sim, std::int64_t step) {
-  if (sample_forces_) sim.sample_forces(forces_);
-  writer_.write_frame(step, sim.time(), sim.particles(), sample_forces_ ? &forces_ : nullptr);
-  writer_.write_observables(step, sim.time(), observables(sim));
+  const std::size_t grains = writer_.write_frame(step, sim.time(), sim);
+  writer_.write_observables(step, sim.time(), observables(sim, grains));
 }
 
 template class FrameOutput<2>;

@@ -39,8 +39,6 @@ class FrameOutput final : public analysis::VisitingObserver<D, FrameOutput<D>> {
   analysis::H5mdWriter<D>& writer_;
   IntervalSchedule schedule_;
   double t_end_;
-  bool sample_forces_;
-  ForceSample<D> forces_;
   double last_output_ = 0.0;
 };
 

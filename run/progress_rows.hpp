@@ -8,9 +8,9 @@
 #include <string>
 
 #include "analysis/run_observer.hpp"
-#include "run/progress_table.hpp"
 #include "core/interval_schedule.hpp"
 #include "core/scene.hpp"
+#include "run/progress_table.hpp"
 
 namespace granjet {
 
@@ -30,7 +30,7 @@ class ProgressRows final : public analysis::RunObserver<D> {
   void observe(Simulator<D>& sim) override {
     const double t = sim.time();
     if (!schedule_.due(t)) return;
-    table_.row(t, static_cast<std::int64_t>(sim.particles().size()), sim.stats(), sim.energy());
+    table_.row(t, static_cast<std::int64_t>(sim.grain_count()), sim.stats(), sim.energy());
     schedule_.pass(t);
   }
   std::string state_group() const override { return "run"; }

@@ -25,12 +25,14 @@ namespace granjet {
 enum class RankOrder : int {
   kAdvance,
   kParticles,
+  kGrainCount,
   kParticlesIn,
   kTransfers,
   kTransfersIn,
   kStats,
   kForces,
   kEnergy,
+  kFrame,
   kCheckpoint,
   kCheckpointShare,
   kRestore,
@@ -42,6 +44,14 @@ struct RankCall {
   RankOrder order = RankOrder::kDone;
   double value = 0.0;   // advance_to's time, checkpoint_share's rank
   SampleRegion region;  // particles_in's and collect_transfers_in's
+  FrameAsk frame;       // frame's
+};
+
+// A follower's frame sink: only rank 0 hears of a frame.
+template <int D>
+struct NoFrame final : FrameSink<D> {
+  void grains(GrainId, GrainId, const Particles<D>&, std::span<const Vec<D>>) override {}
+  void contacts(std::span<const typename ForceSample<D>::Contact>) override {}
 };
 
 // Each rank's row, on rank 0 in rank order (none elsewhere). Collective.
@@ -83,6 +93,10 @@ class RankLeader final : public Simulator<D> {
     call(RankOrder::kParticles);
     return sim_->particles();
   }
+  std::size_t grain_count() const override {
+    call(RankOrder::kGrainCount);
+    return sim_->grain_count();
+  }
   const Particles<D>& particles_in(const SampleRegion& region) const override {
     call(RankOrder::kParticlesIn, 0.0, region);
     return sim_->particles_in(region);
@@ -107,6 +121,10 @@ class RankLeader final : public Simulator<D> {
     call(RankOrder::kEnergy);
     return sim_->energy();
   }
+  void frame(const FrameAsk& ask, FrameSink<D>& sink) const override {
+    call(RankOrder::kFrame, 0.0, {}, ask);
+    sim_->frame(ask, sink);
+  }
   void checkpoint(StateArchive& out) override {
     call(RankOrder::kCheckpoint);
     sim_->checkpoint(out);
@@ -126,8 +144,9 @@ class RankLeader final : public Simulator<D> {
   }
 
  private:
-  void call(RankOrder order, double value = 0.0, const SampleRegion& region = {}) const {
-    RankCall c{order, value, region};
+  void call(RankOrder order, double value = 0.0, const SampleRegion& region = {},
+            const FrameAsk& frame = {}) const {
+    RankCall c{order, value, region, frame};
     ranks_.broadcast(c);
   }
 
@@ -153,6 +172,9 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       case RankOrder::kParticles:
         sim.particles();
         break;
+      case RankOrder::kGrainCount:
+        sim.grain_count();
+        break;
       case RankOrder::kParticlesIn:
         sim.particles_in(c.region);
         break;
@@ -177,6 +199,11 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       case RankOrder::kEnergy:
         sim.energy();
         break;
+      case RankOrder::kFrame: {
+        NoFrame<D> ignored;
+        sim.frame(c.frame, ignored);
+        break;
+      }
       case RankOrder::kCheckpoint: {
         StateArchive checkpoint;
         sim.checkpoint(checkpoint);

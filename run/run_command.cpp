@@ -47,7 +47,7 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
   j["scene"] = scene.name;
   j["backend"] = backend.name;
   j["dimension"] = D;
-  j["grains"] = sim.particles().size();
+  j["grains"] = sim.grain_count();
   j["grains_initial"] = grains_initial;
   j["removed"] = s.removed;
   j["time"] = sim.time();
@@ -238,13 +238,13 @@ RunOutcome run_simulation(Simulator<D>& sim, const Scene& requested, const Scene
   for (const std::string& note : support.notes) say(backend.name + ": " + note);
   const std::vector<std::string> warnings = run_warnings(scene, backend);
   for (const std::string& warning : warnings) say("warning: " + warning);
-  const auto grains_initial = static_cast<std::int64_t>(sim.particles().size());
+  const auto grains_initial = static_cast<std::int64_t>(sim.grain_count());
 
   const std::vector<std::unique_ptr<analysis::RunObserver<D>>> measurements =
       scene_measurements(scene, sim);
   const std::unique_ptr<analysis::H5mdWriter<D>> writer =
       open_run_file<D>(out_file, scene, requested_ini(requested, support), options,
-                       sim.particles().size(), resume_from != nullptr);
+                       sim.grain_count(), resume_from != nullptr);
   FrameOutput<D> frames(*writer, scene);
   ProgressRows<D> progress(log.report(), scene, backend.counts_events);
   RunObservers<D> observers;
@@ -262,7 +262,7 @@ RunOutcome run_simulation(Simulator<D>& sim, const Scene& requested, const Scene
   }
 
   log.report() << (resume_from ? "continuing " : "writing ") << out_file.string() << " ("
-               << backend.name << ", " << D << "D, " << sim.particles().size() << " grains, t_end "
+               << backend.name << ", " << D << "D, " << sim.grain_count() << " grains, t_end "
                << scene.run.t_end << ")\n";
   progress.header();
   const Interrupts interrupts;

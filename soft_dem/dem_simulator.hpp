@@ -9,8 +9,9 @@
 // Given a team of several MPI ranks, the grains of an open-space scene are spread over them by
 // space (soft_dem/domain.hpp) with the results of one rank; what looks at all grains is then
 // collective, every rank calling it in the same order. energy() and stats() are the same on
-// every rank; particles(), the samples and the checkpoint, which only the output reads, are
-// whole on rank 0 and empty elsewhere.
+// every rank; particles() and the samples, which only the output reads, are whole on rank 0
+// and empty elsewhere; a frame comes to rank 0 one block of grain ids at a time, and a
+// checkpoint one rank's share at a time.
 #pragma once
 
 #include <cstddef>
@@ -51,6 +52,7 @@ class DemSimulator final : public Simulator<D> {
   void advance_to(double t) override;
   double time() const override { return static_cast<double>(step_) * dt_; }
   const Particles<D>& particles() const override;
+  std::size_t grain_count() const override;
   const Particles<D>& particles_in(const SampleRegion& region) const override;
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) override;
@@ -58,6 +60,7 @@ class DemSimulator final : public Simulator<D> {
   bool has_contact_forces() const override { return true; }
   void sample_forces(ForceSample<D>& out) const override;
   EnergyBalance energy() const override;
+  void frame(const FrameAsk& ask, FrameSink<D>& sink) const override;
   void checkpoint(StateArchive& out) override;
   void restore(const StateArchive& in) override;
 
@@ -148,7 +151,6 @@ class DemSimulator final : public Simulator<D> {
   std::vector<Value> in_whole_order_on_rank0(Of&& value_of) const {
     return in_whole_order<Value>(std::forward<Of>(value_of), Joined::kOnRank0);
   }
-  EnergyBalance energy_over_ranks() const;
   // At the start or a resume: the first cut of the parts, over the ranks, from the grains each
   // rank starts with (mine: those it is to hand to their owners, each grain on one rank;
   // whole_index: each grain's place in the order one rank would hold them). The first rebuild
@@ -162,8 +164,11 @@ class DemSimulator final : public Simulator<D> {
   // Those `region` holds (all for none).
   void collect_transfers_over_ranks(std::vector<PairImpulse<D>>& out, double elapsed,
                                     const SampleRegion* region) const;
-  // out.total holds a zero per grain held here.
   void sample_forces_over_ranks(ForceSample<D>& out) const;
+  std::vector<Vec<D>> force_totals_here() const;
+  void contacts_on_rank0(std::vector<typename ForceSample<D>::Contact>& out) const;
+  // A frame's grains over ranks, one block of ids at a time.
+  void frame_grains(const FrameAsk& ask, FrameSink<D>& sink) const;
   bool over_ranks() const { return domain_.has_value(); }
   void check_finite() const;
   void check_energy() const;

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/exact_sum.hpp"
 #include "core/initial_state.hpp"
 #include "core/jet_geometry.hpp"
 #include "soft_dem/contact_coefficients.hpp"
@@ -142,40 +143,37 @@ void DemSimulator<D, Law, kMono, Space>::advance_to(double t) {
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::check_energy() const {
   if (scene_.contact.restitution >= 1.0) return;
-  double kinetic = 0.0;
+  const auto mine = [&](std::size_t i) { return !over_ranks() || owned_[i]; };
+  ExactSum kinetic_sum;  // the same bits on any count of ranks (core/exact_sum.hpp)
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    if (p_.inverse_mass()[i] == 0.0 || (over_ranks() && !owned_[i])) continue;
-    kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
+    if (p_.inverse_mass()[i] == 0.0 || !mine(i)) continue;
+    kinetic_sum.add(0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm());
     if constexpr (kRotation)
-      kinetic += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+      kinetic_sum.add(0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i]);
   }
   // The pull of adhesion is conservative: what it has given to the grains now touching is its
   // work F_a delta over them (adhesion.hpp), which the kinetic energy may hold on top.
   if (scene_.contact.adhesion > 0.0) {
     for_each_contact(
         [&](std::size_t i, std::size_t, std::uint32_t, const ContactGeometry<D>& g, const Vec<D>&) {
-          if (!over_ranks() || owned_[i])
-            kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
+          if (mine(i)) kinetic_sum.add(adhesion_energy(g.overlap, scene_.contact.adhesion));
         },
         [](std::uint32_t) {});
     for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>&) {
-      if (!over_ranks() || owned_[i])
-        kinetic += adhesion_energy(g.overlap, scene_.contact.adhesion);
+      if (mine(i)) kinetic_sum.add(adhesion_energy(g.overlap, scene_.contact.adhesion));
     });
   }
-  // Over ranks, the ranks' parts summed in rank order: the same bound on every rank.
   std::size_t fastest = 0;
   double fastest_speed2 = -1.0;
   for (std::size_t i = 0; i < p_.size(); ++i)
-    if ((!over_ranks() || owned_[i]) && p_.velocity()[i].squaredNorm() > fastest_speed2) {
+    if (mine(i) && p_.velocity()[i].squaredNorm() > fastest_speed2) {
       fastest = i;
       fastest_speed2 = p_.velocity()[i].squaredNorm();
     }
   GrainId fastest_id = p_.empty() ? 0 : p_.id()[fastest];
   if (over_ranks()) {
     const RankTeam& team = domain_->team();
-    const std::vector<double> parts = team.all_gather<double>(std::vector<double>{kinetic});
-    kinetic = std::accumulate(parts.begin(), parts.end(), 0.0);
+    team.sum(kinetic_sum.words());
     struct Fastest {
       double speed2;
       GrainId id;
@@ -186,6 +184,7 @@ void DemSimulator<D, Law, kMono, Space>::check_energy() const {
                    return a.speed2 < b.speed2;
                  })->id;
   }
+  const double kinetic = kinetic_sum.value();
   const double rise = kinetic + removed_energy_ - initial_energy_;
   if (!(rise > 0.01 * initial_energy_)) return;
   throw BlowUpError("the kinetic energy rose " + std::to_string(100.0 * rise / initial_energy_) +
@@ -822,8 +821,8 @@ template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) const {
   const auto id = p_.id();
   out.contacts.clear();
-  out.total.assign(p_.size(), Vec<D>::Zero());
   if (over_ranks()) return sample_forces_over_ranks(out);
+  out.total.assign(p_.size(), Vec<D>::Zero());
   const auto add = [&](std::size_t i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
     // A law that turns no grain has no tangential force: projecting would only add rounding.
     const Vec<D> normal = kRotation ? Vec<D>(f.dot(g.n) * g.n) : f;
@@ -906,25 +905,39 @@ SimStats DemSimulator<D, Law, kMono, Space>::stats() const {
   return s;
 }
 
+// Each sum exact and rounded once (core/exact_sum.hpp): over ranks each rank adds its own grains,
+// and the contacts and springs whose first grain it owns, and the ranks' sums join as integers,
+// to the bits of one rank.
 template <int D, class Law, bool kMono, class Space>
 EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
-  if (over_ranks()) return energy_over_ranks();
-  EnergyBalance e;
+  const auto mine = [&](std::size_t i) { return !over_ranks() || owned_[i]; };
+  ExactSum kinetic, rotational, elastic;
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    if (p_.inverse_mass()[i] == 0.0) continue;  // immovable wall grains carry no energy
-    e.kinetic += 0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm();
+    if (!mine(i) || p_.inverse_mass()[i] == 0.0) continue;  // immovable grains carry none
+    kinetic.add(0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm());
     if constexpr (kRotation)
-      e.rotational += 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
+      rotational.add(0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i]);
   }
   for_each_contact(
-      [&](std::size_t, std::size_t, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>&) {
-        e.elastic += law_.elastic_energy(g, pass_.history().of(k));
+      [&](std::size_t i, std::size_t, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>&) {
+        if (mine(i)) elastic.add(law_.elastic_energy(g, pass_.history().of(k)));
       },
       [](std::uint32_t) {});
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>&) {
-    e.elastic += plate_->elastic_energy(i, g);
+    if (mine(i)) elastic.add(plate_->elastic_energy(i, g));
   });
-  if (tethered_) e.elastic += wall_.elastic_energy(p_, [this](GrainId id) { return index_of(id); });
+  if (tethered_)
+    wall_.for_each_energy_term(
+        p_, [this](GrainId id) { return index_of(id); },
+        [&](std::size_t, std::size_t i, double term) {
+          if (mine(i)) elastic.add(term);
+        });
+  if (over_ranks())
+    for (ExactSum* sum : {&kinetic, &rotational, &elastic}) domain_->team().sum(sum->words());
+  EnergyBalance e;
+  e.kinetic = kinetic.value();
+  e.rotational = rotational.value();
+  e.elastic = elastic.value();
   e.removed = removed_energy_;
   e.dissipated = initial_energy_ - e.total() - e.removed;
   return e;

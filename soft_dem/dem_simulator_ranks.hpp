@@ -352,67 +352,6 @@ void DemSimulator<D, Law, kMono, Space>::for_each_in_whole_order(Of&& value_of, 
     visit(all[k].value);
 }
 
-// energy() over ranks: each sum in the order one rank makes it, the same on every rank.
-template <int D, class Law, bool kMono, class Space>
-EnergyBalance DemSimulator<D, Law, kMono, Space>::energy_over_ranks() const {
-  EnergyBalance e;
-  struct Motion {
-    double kinetic, rotational;
-  };
-  for_each_in_whole_order<Motion>(
-      [&](std::size_t i, auto emit) {
-        if (p_.inverse_mass()[i] == 0.0) return;
-        double rotational = 0.0;
-        if constexpr (kRotation)
-          rotational = 0.5 * Dim<D>::spin_dot(p_.spin()[i], p_.spin()[i]) / inv_inertia_[i];
-        emit({0.5 * p_.mass()[i] * p_.velocity()[i].squaredNorm(), rotational});
-      },
-      [&](const Motion& m) {
-        e.kinetic += m.kinetic;
-        if constexpr (kRotation) e.rotational += m.rotational;
-      },
-      Joined::kOnEveryRank);
-  for (double elastic : in_whole_order<double>([&](std::size_t i, auto emit) {
-         for_each_contact_of(
-             i,
-             [&](std::size_t, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>&) {
-               emit(law_.elastic_energy(g, pass_.history().of(k)));
-             },
-             [](std::uint32_t) {});
-       }))
-    e.elastic += elastic;
-  if (plate_)
-    for (double elastic : in_whole_order<double>([&](std::size_t i, auto emit) {
-           plate_->contact(
-               p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
-               [&](const ContactGeometry<D>& g, const Vec<D>&) {
-                 emit(plate_->elastic_energy(i, g));
-               },
-               [] {});
-         }))
-      e.elastic += elastic;
-  if (tethered_) {
-    struct Term {
-      std::uint64_t term;
-      double energy;
-    };
-    std::vector<Term> mine;
-    wall_.for_each_energy_term(
-        p_, [this](GrainId id) { return index_of(id); },
-        [&](std::size_t term, std::size_t i, double energy) {
-          if (owned_[i]) mine.push_back({term, energy});
-        });
-    std::vector<Term> all = domain_->team().template all_gather<Term>(mine);
-    std::sort(all.begin(), all.end(), [](const Term& a, const Term& b) { return a.term < b.term; });
-    double tether = 0.0;
-    for (const Term& t : all) tether += t.energy;
-    e.elastic += tether;
-  }
-  e.removed = removed_energy_;
-  e.dissipated = initial_energy_ - e.total() - e.removed;
-  return e;
-}
-
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::own_share(std::vector<std::uint8_t> mine,
                                                    std::vector<std::uint64_t> whole_index) {
@@ -517,8 +456,33 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
         take, Joined::kOnRank0);
 }
 
+// Each grain's total force from all its contacts here, in list order as on one rank, then the
+// plate and the tethers: whole for the grains owned here.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>& out) const {
+std::vector<Vec<D>> DemSimulator<D, Law, kMono, Space>::force_totals_here() const {
+  std::vector<Vec<D>> total(p_.size(), Vec<D>::Zero());
+  for_each_contact(
+      [&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
+          const Vec<D>& v_rel) {
+        Vec<D> shear = pass_.history().of(k);
+        const Vec<D> f = law_.force(g, v_rel, shear);
+        total[i] += f;
+        total[j] -= f;
+      },
+      [](std::uint32_t) {});
+  for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+    if (owned_[i]) total[i] += plate_->force(i, g, v_rel);
+  });
+  if (tethered_)
+    wall_.add_forces(
+        p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(total));
+  return total;
+}
+
+// The contacts of all ranks on rank 0, in the order of one rank.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::contacts_on_rank0(
+    std::vector<typename ForceSample<D>::Contact>& out) const {
   constexpr int N = 3 + 2 * D;
   const auto id = p_.id();
   const auto split = [&](GrainId i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
@@ -530,20 +494,9 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
     return row;
   };
   const auto take = [&](const Row<N>& r) {
-    out.contacts.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]),
-                            get_row<D, N>(r, 3), get_row<D, N>(r, 3 + D), r[2]});
+    out.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 3),
+                   get_row<D, N>(r, 3 + D), r[2]});
   };
-  // Each grain's total from all its contacts here, in list order, as on one rank.
-  std::vector<Vec<D>>& total = out.total;
-  for_each_contact(
-      [&](std::size_t i, std::size_t j, std::uint32_t k, const ContactGeometry<D>& g,
-          const Vec<D>& v_rel) {
-        Vec<D> shear = pass_.history().of(k);
-        const Vec<D> f = law_.force(g, v_rel, shear);
-        total[i] += f;
-        total[j] -= f;
-      },
-      [](std::uint32_t) {});
   for_each_in_whole_order<Row<N>>(
       [&](std::size_t i, auto emit) {
         for_each_contact_of(
@@ -561,24 +514,98 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>
           plate_->contact(
               p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
               [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-                const Vec<D> f = plate_->force(i, g, v_rel);
-                total[i] += f;
-                emit(split(id[i], kPlateId, g, f));
+                emit(split(id[i], kPlateId, g, plate_->force(i, g, v_rel)));
               },
               [] {});
         },
         take, Joined::kOnRank0);
-  if (tethered_)
-    wall_.add_forces(
-        p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(total));
-  std::vector<Vec<D>> whole;
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::sample_forces_over_ranks(ForceSample<D>& out) const {
+  contacts_on_rank0(out.contacts);
+  const std::vector<Vec<D>> total = force_totals_here();
+  out.total.clear();
   for (const Row<D>&r : in_whole_order_on_rank0<Row<D>>([&](std::size_t i, auto emit) {
          Row<D> row;
          put_row<D, D>(row, 0, total[i]);
          emit(row);
        }))
-    whole.push_back(get_row<D, D>(r, 0));
-  total = std::move(whole);
+    out.total.push_back(get_row<D, D>(r, 0));
+}
+
+template <int D, class Law, bool kMono, class Space>
+std::size_t DemSimulator<D, Law, kMono, Space>::grain_count() const {
+  if (!over_ranks()) return p_.size();
+  return static_cast<std::size_t>(domain_->team().sum(
+      static_cast<std::int64_t>(std::count(owned_.begin(), owned_.end(), std::uint8_t{1}))));
+}
+
+// Over ranks each block of ids comes to rank 0 from every rank at once (a gather per block):
+// rank 0 holds one block of grains, never the whole run, and writes it as one stretch of rows.
+// A grain whose id lies beyond the rows goes with the last block, where the sink refuses it as
+// on one rank.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::frame(const FrameAsk& ask, FrameSink<D>& sink) const {
+  if (!over_ranks()) return Simulator<D>::frame(ask, sink);
+  frame_grains(ask, sink);
+  if (!ask.contacts) return;
+  std::vector<typename ForceSample<D>::Contact> contacts;
+  contacts_on_rank0(contacts);
+  if (domain_->team().rank() == 0) sink.contacts(contacts);
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::frame_grains(const FrameAsk& ask,
+                                                      FrameSink<D>& sink) const {
+  struct Grain {  // what Particles holds of a grain, and its total force
+    GrainId id;
+    GrainKind kind;
+    double x[D], v[D], w[kSpinWidth<D>], f[D], radius, mass;
+  };
+  const RankTeam& team = domain_->team();
+  const std::vector<Vec<D>> total = ask.force ? force_totals_here() : std::vector<Vec<D>>();
+  const std::size_t per_block = std::max<std::size_t>(ask.block_rows, 1);
+  const std::size_t blocks = std::max<std::size_t>((ask.rows + per_block - 1) / per_block, 1);
+  const auto block_of = [&](GrainId id) {
+    return std::min(static_cast<std::size_t>(std::max<GrainId>(id, 0)) / per_block, blocks - 1);
+  };
+  // This rank's own grains by block (counting sort: each block's grains in the order held).
+  std::vector<std::uint32_t> start(blocks + 1, 0), own;
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (owned_[i]) ++start[block_of(p_.id()[i]) + 1];
+  for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+  own.resize(start[blocks]);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (owned_[i]) own[fill[block_of(p_.id()[i])]++] = static_cast<std::uint32_t>(i);
+  std::vector<Grain> mine, all;
+  Particles<D> block;
+  std::vector<Vec<D>> force;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    mine.clear();
+    for (std::uint32_t k = start[b]; k < start[b + 1]; ++k) {
+      const std::uint32_t i = own[k];
+      Grain g{p_.id()[i], p_.kind()[i], {}, {}, {}, {}, p_.radius()[i], p_.mass()[i]};
+      put<D>(g.x, p_.position()[i]);
+      put<D>(g.v, p_.velocity()[i]);
+      put<D>(g.w, p_.spin()[i]);
+      if (ask.force) put<D>(g.f, total[i]);
+      mine.push_back(g);
+    }
+    team.template gather_into<Grain>(mine, all);
+    if (team.rank() != 0) continue;
+    block.clear();
+    force.clear();
+    for (const Grain& g : all) {
+      block.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
+      block.spin().back() = get<D, Spin<D>>(g.w);
+      if (ask.force) force.push_back(get<D, Vec<D>>(g.f));
+    }
+    const auto first = static_cast<GrainId>(b * per_block);
+    const auto end = static_cast<GrainId>(std::min((b + 1) * per_block, ask.rows));
+    sink.grains(first, end, block, force);
+  }
 }
 
 }  // namespace granjet::dem

@@ -109,17 +109,9 @@ class TetheredWall {
     }
   }
 
-  template <class IndexOf>
-  double elastic_energy(const Particles<D>& p, IndexOf&& index_of) const {
-    double e = 0.0;
-    for_each_energy_term(p, index_of, [&](std::size_t, std::size_t, double term) { e += term; });
-    return e;
-  }
-
-  // Calls visit(term, i, energy) for each spring's elastic energy in the order elastic_energy
-  // sums them: the anchors', then the bonds' (term counts both); i is the grain whose rank
-  // adds the term (the anchored grain, a bond's first grain). Springs with a grain not held
-  // here are left out.
+  // Calls visit(term, i, energy) for each spring's elastic energy: the anchors', then the
+  // bonds' (term counts both); i is the grain whose rank adds the term (the anchored grain, a
+  // bond's first grain). Springs with a grain not held here are left out.
   template <class IndexOf, class Visit>
   void for_each_energy_term(const Particles<D>& p, IndexOf&& index_of, Visit&& visit) const {
     const auto x = p.position();

@@ -19,6 +19,7 @@
 #include "analysis/file_lock.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "core/errors.hpp"
+#include "core/plate_face.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -113,6 +114,29 @@ bool in_a_killed_process(Body body) {
   int status = 0;
   return child > 0 && waitpid(child, &status, 0) == child && WIFEXITED(status) &&
          WEXITSTATUS(status) == 0;
+}
+
+// A dataset's stored values as bytes, whatever their type.
+std::vector<char> dataset_bytes(const fs::path& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t set = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  const hid_t stored = H5Dget_type(set);
+  const hid_t type = H5Tget_native_type(stored, H5T_DIR_ASCEND);
+  const hid_t space = H5Dget_space(set);
+  std::vector<char> bytes(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)) *
+                          H5Tget_size(type));
+  if (set < 0 || H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0) bytes.clear();
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Tclose(stored);
+  H5Dclose(set);
+  H5Fclose(f);
+  return bytes;
+}
+
+// Bytes per grain row of a frame in the per-grain series `name` (3D).
+std::size_t raw_row_bytes(const std::string& name) {
+  return name.find("position") != std::string::npos ? 3 * sizeof(double) : sizeof(GrainId);
 }
 
 class H5mdWriterTest : public ::testing::Test {
@@ -378,9 +402,124 @@ TEST_F(H5mdWriterTest, WritingAfterFinishIsRefused) {
   EXPECT_THROW(writer.write_frame(0, 0.0, grains_of<3>(0)), std::logic_error);
 }
 
-TEST_F(H5mdWriterTest, GrainIdsBeyondTheRowsAreRefused) {
-  H5mdWriter<3> writer(dir_ / "run.h5", metadata(3), kRows - 1);  // no row for id 40
-  EXPECT_THROW(writer.write_frame(0, 0.0, grains_of<3>(0)), std::invalid_argument);
+TEST_F(H5mdWriterTest, GrainIdsBeyondTheRowsAreRefusedAndLeaveNoFrame) {
+  const fs::path file = dir_ / "run.h5";
+  {
+    H5mdWriter<3> writer(file, metadata(3), kRows - 1);  // no row for id 40
+    EXPECT_THROW(writer.write_frame(0, 0.0, grains_of<3>(0)), std::invalid_argument);
+    Particles<3> without_40;
+    without_40.add(7, GrainKind::kFree, position_of<3>(7, 0), velocity_of<3>(7, 0), radius_of(7),
+                   1.0);
+    writer.write_frame(100, 0.5, without_40);
+    writer.finish();
+  }
+  EXPECT_EQ(read_summary(file).frames, 1u);
+  const Frame<3> frame = read_frame<3>(file, 0);
+  EXPECT_EQ(frame.step, 100);
+  EXPECT_EQ(frame.id, std::vector<GrainId>{7});
+  for (const char* set :
+       {"/particles/all/position/value", "/particles/all/present/value", "/particles/all/id/value"})
+    EXPECT_EQ(dataset_bytes(file, set).size(), raw_row_bytes(set) * (kRows - 1)) << set;
+}
+
+// A simulator that hands the frames of kFrames, with forces and contacts, in stretches of
+// ask.block_rows ids, each stretch's grains last first; a stretch of ids at or past
+// `fail_from` fails.
+class StretchedFrames final : public Simulator<3> {
+ public:
+  explicit StretchedFrames(std::size_t frame, GrainId fail_from = kRows)
+      : frame_(frame), fail_from_(fail_from) {}
+
+  static ForceSample<3> forces(std::size_t frame) {
+    ForceSample<3> f;
+    for (GrainId id : kFrames[frame]) f.total.push_back(Vec<3>(id, -id, 0.5 * id));
+    const auto& ids = kFrames[frame];
+    for (std::size_t k = 0; k + 1 < ids.size(); ++k)
+      f.contacts.push_back({ids[k], ids[k + 1], Vec<3>(1.0 * k, 0, 0), Vec<3>(0, 2.0 * k, 0),
+                            0.01 * static_cast<double>(k)});
+    f.contacts.push_back({ids[0], kPlateId, Vec<3>(0, 0, 1), Vec<3>::Zero(), 0.5});
+    return f;
+  }
+
+  void frame(const FrameAsk& ask, FrameSink<3>& sink) const override {
+    const Particles<3> all = grains_of<3>(frame_);
+    const ForceSample<3> f = forces(frame_);
+    for (std::size_t first = 0; first < ask.rows; first += ask.block_rows) {
+      const auto low = static_cast<GrainId>(first);
+      const auto end = static_cast<GrainId>(std::min(first + ask.block_rows, ask.rows));
+      if (end > fail_from_) throw std::runtime_error("this stretch fails");
+      std::vector<std::uint32_t> in;
+      for (auto k = static_cast<std::uint32_t>(all.size()); k-- > 0;)
+        if (all.id()[k] >= low && all.id()[k] < end) in.push_back(k);
+      Particles<3> stretch = all;
+      stretch.gather(in);
+      std::vector<Vec<3>> force;
+      for (std::uint32_t k : in) force.push_back(f.total[k]);
+      sink.grains(low, end, stretch, ask.force ? force : std::vector<Vec<3>>());
+    }
+    if (ask.contacts) sink.contacts(f.contacts);
+  }
+
+  std::string_view backend() const override { return "stretched frames"; }
+  void advance_to(double) override {}
+  double time() const override { return 0.5 * static_cast<double>(frame_); }
+  const Particles<3>& particles() const override { throw std::logic_error("not asked"); }
+  void collect_transfers(std::vector<PairImpulse<3>>&) override {}
+  SimStats stats() const override { return {}; }
+  EnergyBalance energy() const override { return {}; }
+  void checkpoint(StateArchive&) override {}
+  void restore(const StateArchive&) override {}
+
+ private:
+  std::size_t frame_;
+  GrainId fail_from_;
+};
+
+TEST_F(H5mdWriterTest, AFrameTakenInStretchesOfIdsIsTheFrameWrittenWhole) {
+  RunMetadata meta = metadata(3);
+  meta.omega = meta.force = meta.contacts = true;
+  const fs::path whole = dir_ / "whole.h5", stretched = dir_ / "stretched.h5";
+  {
+    H5mdWriter<3> a(whole, meta, kRows), b(stretched, meta, kRows);
+    for (std::size_t k = 0; k < kFrames.size(); ++k) {
+      const ForceSample<3> f = StretchedFrames::forces(k);
+      a.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k, grains_of<3>(k), &f);
+      // 41 rows in stretches of 8, 16 and 64 (one stretch for all)
+      const std::size_t grains = b.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k,
+                                               StretchedFrames(k), std::size_t{8} << (k * 2));
+      EXPECT_EQ(grains, kFrames[k].size());
+    }
+    a.finish();
+    b.finish();
+  }
+  const std::string all = "/particles/all/";
+  for (const std::string set :
+       {all + "position/value", all + "velocity/value", all + "radius/value", all + "id/value",
+        all + "present/value", all + "omega/value", all + "force/value", all + "position/step",
+        all + "position/time", std::string("/connectivity/contacts/value"),
+        std::string("/contacts/normal_force/value"),
+        std::string("/contacts/tangential_force/value"), std::string("/contacts/overlap/value"),
+        std::string("/observables/frame_grains/value"),
+        std::string("/observables/frame_contacts/value")}) {
+    const std::vector<char> expected = dataset_bytes(whole, set);
+    EXPECT_FALSE(expected.empty()) << set;
+    EXPECT_EQ(expected, dataset_bytes(stretched, set)) << set;
+  }
+}
+
+TEST_F(H5mdWriterTest, AFrameThatFailsHalfWayLeavesNoneOfItsRows) {
+  const fs::path file = dir_ / "run.h5";
+  {
+    H5mdWriter<3> writer(file, metadata(3), kRows);
+    writer.write_frame(0, 0.0, StretchedFrames(0), 8);
+    EXPECT_THROW(writer.write_frame(100, 0.5, StretchedFrames(1, 30), 8), std::runtime_error);
+    writer.write_frame(100, 0.5, StretchedFrames(1), 8);
+    writer.finish();
+  }
+  EXPECT_EQ(read_summary(file).frames, 2u);
+  expect_frames_read_back<3>(file, 2);
+  EXPECT_EQ(dataset_bytes(file, "/particles/all/position/value").size(),
+            2 * kRows * 3 * sizeof(double));
 }
 
 TEST_F(H5mdWriterTest, MissingDirectoryThrowsNamingThePath) {

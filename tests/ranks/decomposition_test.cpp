@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -115,6 +116,77 @@ void expect_samples_of_one_rank(Simulator<D>& one, Simulator<D>& spread) {
   expect_same_transfers(ta, tb);
 }
 
+// A frame as it comes to a sink: its grains' state, forces and contacts by id, and that its
+// stretches of ids came in order, each with its own grains only.
+template <int D>
+struct RecordedFrame final : FrameSink<D> {
+  std::vector<std::vector<double>> rows;  // by id: raw_state, then the force
+  std::vector<std::uint8_t> held;
+  std::vector<double> touching;  // the contacts as raw numbers
+  std::size_t stretches = 0;
+  GrainId done = 0;
+  bool in_order = true;
+
+  explicit RecordedFrame(std::size_t ids) : rows(ids), held(ids, 0) {}
+  void grains(GrainId first, GrainId end, const Particles<D>& grains,
+              std::span<const Vec<D>> force) override {
+    ++stretches;
+    in_order = in_order && first == done && end >= first;
+    done = end;
+    for (std::size_t k = 0; k < grains.size(); ++k) {
+      const GrainId id = grains.id()[k];
+      in_order = in_order && id >= first && id < end;
+      Particles<D> one;
+      one.add(id, grains.kind()[k], grains.position()[k], grains.velocity()[k], grains.radius()[k],
+              grains.mass()[k]);
+      one.spin()[0] = grains.spin()[k];
+      rows.at(id) = raw_state(one);
+      rows[id].push_back(grains.radius()[k]);
+      if (!force.empty()) rows[id].insert(rows[id].end(), force[k].data(), force[k].data() + D);
+      held[id] = 1;
+    }
+  }
+  void contacts(std::span<const typename ForceSample<D>::Contact> list) override {
+    for (const auto& c : list) {
+      touching.insert(touching.end(),
+                      {static_cast<double>(c.i), static_cast<double>(c.j), c.overlap});
+      touching.insert(touching.end(), c.normal_force.data(), c.normal_force.data() + D);
+      touching.insert(touching.end(), c.tangential_force.data(), c.tangential_force.data() + D);
+    }
+  }
+};
+
+// The frame over ranks, in stretches of 97 ids, is the one-rank frame, and only rank 0 hears
+// of it.
+template <int D>
+void expect_frame_of_one_rank(const Simulator<D>& one, const Simulator<D>& spread) {
+  const std::size_t ids = one.grain_count() + one.stats().removed;
+  EXPECT_EQ(one.grain_count(), spread.grain_count());
+  const FrameAsk ask{ids, 97, true, true};
+  RecordedFrame<D> a(ids), b(ids);
+  one.frame(ask, a);
+  spread.frame(ask, b);
+  if (!on_rank0()) {
+    EXPECT_EQ(b.stretches, 0u);
+    EXPECT_TRUE(b.touching.empty());
+    return;
+  }
+  EXPECT_EQ(b.stretches, (ids + 96) / 97);
+  EXPECT_TRUE(b.in_order);
+  EXPECT_EQ(static_cast<std::size_t>(b.done), ids);
+  EXPECT_EQ(a.held, b.held);
+  EXPECT_GT(std::count(b.held.begin(), b.held.end(), 1), 0);
+  for (std::size_t id = 0; id < ids; ++id) {
+    ASSERT_EQ(a.rows[id].size(), b.rows[id].size()) << "grain " << id;
+    ASSERT_EQ(0,
+              std::memcmp(a.rows[id].data(), b.rows[id].data(), a.rows[id].size() * sizeof(double)))
+        << "grain " << id;
+  }
+  ASSERT_EQ(a.touching.size(), b.touching.size());  // none in flight; some at the end
+  EXPECT_EQ(0,
+            std::memcmp(a.touching.data(), b.touching.data(), a.touching.size() * sizeof(double)));
+}
+
 template <int D>
 void expect_ranks_give_one_rank_bits(const std::string& scene_file,
                                      std::vector<std::string> overrides, double t_end,
@@ -134,6 +206,7 @@ void expect_ranks_give_one_rank_bits(const std::string& scene_file,
     EXPECT_EQ(a.neighbour_rebuilds, b.neighbour_rebuilds);
     EXPECT_EQ(a.removed, b.removed);
     expect_samples_of_one_rank<D>(*one, *spread);
+    expect_frame_of_one_rank<D>(*one, *spread);
   }
   EXPECT_GT(one->stats().contacts, 10);
   if (expect_removal) {
