@@ -74,6 +74,9 @@ class H5mdFile {
   // A frame: begin_frame(), its rows in ascending stretches, end_frame().
   void begin_frame();
   void write_grains(hsize_t first, hsize_t count, const GrainRows& rows);
+  // Where a frame's stretches are made ready, kept from frame to frame: fresh pages for each
+  // cost more than filling them.
+  GrainRows& stretch() { return stretch_; }
   // Returns the frame's grain count.
   std::size_t end_frame(std::int64_t step, double time, const ContactRows& contacts);
   // Drops what a frame that failed half-way wrote: the file holds the frames before it.
@@ -155,6 +158,7 @@ class H5mdFile {
   // The frame being written: the grains present in it so far, and the first row not yet written.
   hsize_t frame_present_ = 0;
   hsize_t frame_rows_done_ = 0;
+  GrainRows stretch_;
   std::vector<double> box_;      // periodic edges, stored with every frame
   double frame_interval_ = 1.0;  // the dt observable
 };
@@ -734,7 +738,8 @@ namespace {
 template <int D>
 class FrameRowsSink final : public FrameSink<D> {
  public:
-  explicit FrameRowsSink(detail::H5mdFile& file) : file_(file), content_(file.content()) {}
+  FrameRowsSink(detail::H5mdFile& file, detail::H5mdFile::GrainRows& rows)
+      : file_(file), content_(file.content()), rows_(rows) {}
 
   void grains(GrainId first, GrainId end, const Particles<D>& grains,
               std::span<const Vec<D>> force) override {
@@ -799,7 +804,7 @@ class FrameRowsSink final : public FrameSink<D> {
  private:
   detail::H5mdFile& file_;
   detail::H5mdFile::Content content_;
-  detail::H5mdFile::GrainRows rows_;  // one stretch's, its memory kept for the next
+  detail::H5mdFile::GrainRows& rows_;  // one stretch's
   detail::H5mdFile::ContactRows contacts_;
 };
 
@@ -830,7 +835,7 @@ std::size_t H5mdWriter<D>::write_frame(std::int64_t step, double time, const Sim
 template <int D>
 std::size_t H5mdWriter<D>::write_frame(std::int64_t step, double time,
                                        const std::function<void(FrameSink<D>&)>& fill) {
-  FrameRowsSink<D> sink(*file_);
+  FrameRowsSink<D> sink(*file_, file_->stretch());
   file_->begin_frame();
   try {
     fill(sink);

@@ -579,9 +579,11 @@ void DemSimulator<D, Law, kMono, Space>::frame_grains(const FrameAsk& ask,
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::size_t i = 0; i < p_.size(); ++i)
     if (owned_[i]) own[fill[block_of(p_.id()[i])]++] = static_cast<std::uint32_t>(i);
-  std::vector<Grain> mine, all;
-  Particles<D> block;
-  std::vector<Vec<D>> force;
+  // Kept from frame to frame, as in for_each_in_whole_order: fresh pages for a stretch cost
+  // more than filling it.
+  static thread_local std::vector<Grain> mine, all;
+  static thread_local Particles<D> block;
+  static thread_local std::vector<Vec<D>> force;
   for (std::size_t b = 0; b < blocks; ++b) {
     mine.clear();
     for (std::uint32_t k = start[b]; k < start[b + 1]; ++k) {

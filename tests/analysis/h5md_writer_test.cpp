@@ -493,7 +493,7 @@ TEST_F(H5mdWriterTest, AFrameTakenInStretchesOfIdsIsTheFrameWrittenWhole) {
     b.finish();
   }
   const std::string all = "/particles/all/";
-  for (const std::string set :
+  for (const std::string& set :
        {all + "position/value", all + "velocity/value", all + "radius/value", all + "id/value",
         all + "present/value", all + "omega/value", all + "force/value", all + "position/step",
         all + "position/time", std::string("/connectivity/contacts/value"),
