@@ -91,7 +91,7 @@ class H5mdWriter {
   // status "running" and every frame written so far.
   ~H5mdWriter();
 
-  // Ids per stretch of a frame's rows taken at once from a simulator: 32 chunks, some 50 MB of
+  // Ids per stretch of a frame's rows taken at once from a simulator: 32 chunks, some 67 MB of
   // grains in 3D, so that rank 0 of a run over MPI ranks holds that much of a frame at a time.
   static constexpr std::size_t kFrameBlockRows = std::size_t{1} << 19;
 

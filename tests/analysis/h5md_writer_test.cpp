@@ -484,7 +484,7 @@ TEST_F(H5mdWriterTest, AFrameTakenInStretchesOfIdsIsTheFrameWrittenWhole) {
     for (std::size_t k = 0; k < kFrames.size(); ++k) {
       const ForceSample<3> f = StretchedFrames::forces(k);
       a.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k, grains_of<3>(k), &f);
-      // 41 rows in stretches of 8, 16 and 64 (one stretch for all)
+      // 41 rows in stretches of 8, 32 and 128 (one stretch for all)
       const std::size_t grains = b.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k,
                                                StretchedFrames(k), std::size_t{8} << (k * 2));
       EXPECT_EQ(grains, kFrames[k].size());
