@@ -89,7 +89,9 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
 
   // Cut anew where the work grew uneven: each grain weighted by its share of the pass, scaled
   // so that a rank's own grains weigh its measured work (its ghosts nothing).
-  if (const std::optional<double> work = balance_.at_rebuild(team)) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::optional<double> work = balance_.at_rebuild(team);
+  if (work) {
     double mine = 0.0;
     for (std::size_t i = 0; i < n; ++i)
       if (owned_[i]) mine += weight[i];
@@ -194,6 +196,9 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
     if (shear) shear->push_back(get<D, Vec<D>>(g.plate_shear));
   }
   whole_fresh_ = false;
+  if (work)
+    balance_.recut_took(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   if (!partners_elsewhere) return;
   // The first grain of each history whose partner was not here is now owned here, and the
   // partner, within the contact's reach of it, is held here too (owned, or a ghost): the

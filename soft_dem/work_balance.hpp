@@ -9,6 +9,13 @@
 // busiest rank's work over the mean, summed over the looks: the share of the passes' wall time an
 // even split would save.
 //
+// A re-cut moves grains, and the moves cost: in a column of 1e6 grains in flight a re-cut moved
+// a slab of it at 0.13-0.20 s, more than the imbalance it removed. So a re-cut must also pay
+// for itself, as in renting against buying: what the busiest rank spent beyond the mean since
+// the last re-cut, the time an even split would have saved, must exceed what the last re-cut's
+// moves cost (the slowest rank's). A lasting imbalance passes that after a few looks; one
+// that comes and goes with the measuring noise never does.
+//
 // The ranks look at every rebuild: in a jet of touching grains the impact sends a compression
 // front up the column at about 20 d per unit of time, and the contacts behind it are the
 // costliest part of the pass. A look every 4 rebuilds let the front run about 12 d past each
@@ -19,7 +26,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -57,9 +63,17 @@ class WorkBalance {
   std::optional<double> at_rebuild(const RankTeam& team) {
     if (++rebuilds_ < kRebuildsPerLook) return std::nullopt;
     const double work = work_;
-    const std::vector<double> each = team.all_gather<double>(std::vector<double>{work});
-    const double mean = std::accumulate(each.begin(), each.end(), 0.0) / each.size();
-    const double busiest = *std::max_element(each.begin(), each.end());
+    struct Look {
+      double work, recut_seconds;
+    };
+    const std::vector<Look> each = team.all_gather<Look>(std::vector<Look>{{work, recut_seconds_}});
+    double total = 0.0, busiest = 0.0, recut_cost = 0.0;
+    for (const Look& l : each) {
+      total += l.work;
+      busiest = std::max(busiest, l.work);
+      recut_cost = std::max(recut_cost, l.recut_seconds);
+    }
+    const double mean = total / static_cast<double>(each.size());
     rebuilds_ = 0;
     work_ = 0.0;
     if (!started_) {  // the first look spans the start: nothing to compare yet
@@ -68,10 +82,15 @@ class WorkBalance {
     }
     busiest_ += busiest;
     mean_ += mean;
-    if (!(busiest > kRecutImbalance * mean)) return std::nullopt;
+    excess_ += busiest - mean;
+    if (!(busiest > kRecutImbalance * mean) || !(excess_ > recut_cost)) return std::nullopt;
     ++recuts_;
+    excess_ = 0.0;
     return work;
   }
+
+  // The wall time of the rebuild that followed the last re-cut (the moves, this rank's part).
+  void recut_took(double seconds) { recut_seconds_ = seconds; }
 
   // This rank's work since the last look.
   double work() const { return work_; }
@@ -83,6 +102,8 @@ class WorkBalance {
   bool started_ = false;
   double work_ = 0.0;                  // since the last look
   double busiest_ = 0.0, mean_ = 0.0;  // summed over the looks
+  double recut_seconds_ = 0.0;         // the last re-cut's moves, on this rank
+  double excess_ = 0.0;  // the busiest rank's work beyond the mean, since the last re-cut
   std::int64_t recuts_ = 0;
 };
 

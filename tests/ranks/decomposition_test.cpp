@@ -407,6 +407,30 @@ TEST(Ranks, WorkBalanceCutsAnewWhenTheBusiestRankPassesTheMean) {
   EXPECT_EQ(balance.recuts(), 1);
 }
 
+// A re-cut whose moves cost more than the imbalance wasted waits until the waste since the
+// last re-cut has grown past that cost (the slowest rank's), then cuts and starts counting anew.
+TEST(Ranks, WorkBalanceWaitsUntilARecutWouldPayForItsMoves) {
+  using dem::WorkBalance;
+  const RankTeam world = RankTeam::world();
+  WorkBalance balance;
+  ASSERT_FALSE(balance.at_rebuild(world));  // the start
+  balance.recut_took(world.rank() == 1 ? 0.050 : 0.0);
+  // Rank 0 works 30 ms a look more than each other rank: 15-22.5 ms beyond the mean.
+  const auto look = [&] {
+    {
+      const WorkBalance::Pass pass(balance);
+      std::this_thread::sleep_for(std::chrono::milliseconds(world.rank() == 0 ? 40 : 10));
+    }
+    return balance.at_rebuild(world).has_value();
+  };
+  EXPECT_FALSE(look()) << "a re-cut at 15-22.5 ms of waste, against 50 ms of moves";
+  int looks = 1;
+  while (!look()) ASSERT_LE(++looks, 6) << "no re-cut after 6 looks of 15 ms or more of waste";
+  EXPECT_GE(looks, 2);
+  EXPECT_EQ(balance.recuts(), 1);
+  EXPECT_FALSE(look()) << "the waste counts anew after a re-cut";
+}
+
 // A checkpoint written over K ranks resumes on one rank, and one written on one rank resumes
 // over K, each going on as the run that wrote it. Over K ranks each rank's archive holds its own
 // share of the grains and contacts: rank 0 joins the others' to its own for one rank, and the
