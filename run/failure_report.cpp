@@ -2,9 +2,11 @@
 
 #include <exception>
 #include <ostream>
+#include <vector>
 
 #include "analysis/file_lock.hpp"
 #include "core/errors.hpp"
+#include "core/rank_team.hpp"
 
 namespace granjet {
 
@@ -30,6 +32,33 @@ int report_current_exception(std::ostream& err) {
     err << "granjet: " << e.what() << "\n";
     return 1;
   }
+}
+
+std::optional<int> check_on_every_rank(const std::function<void()>& check, std::ostream& err) {
+  const RankTeam team = RankTeam::world();
+  if (team.alone()) {
+    check();
+    return std::nullopt;
+  }
+  std::exception_ptr failure;
+  try {
+    check();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  std::vector<double> first{static_cast<double>(failure ? team.rank() : team.size())};
+  team.min(first);
+  if (first[0] == team.size()) return std::nullopt;
+  std::vector<double> code{0.0};
+  if (first[0] == team.rank()) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (...) {
+      code[0] = report_current_exception(err);
+    }
+  }
+  team.max(code);
+  return static_cast<int>(code[0]);
 }
 
 }  // namespace granjet

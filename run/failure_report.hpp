@@ -4,12 +4,23 @@
 // free).
 #pragma once
 
+#include <functional>
 #include <iosfwd>
+#include <optional>
 
 namespace granjet {
 
 // Called inside a catch block: names the error on `err` ("granjet: ...") and returns its exit
 // code.
 int report_current_exception(std::ostream& err);
+
+// Runs `check`, the reading and checking of a command's inputs, on every rank that mpirun
+// started, and lets no rank go on until all have passed it: some checks run on rank 0 alone
+// (the outputs it will write), and a rank that fails alone would leave the others waiting for
+// it, or end them through MPI_Abort before any could name the error. When `check` fails on
+// some rank, the lowest such rank names its error on `err` and every rank returns that
+// error's exit code, to end as usual. Without mpirun the error is thrown on. MpiSession must be
+// alive.
+std::optional<int> check_on_every_rank(const std::function<void()>& check, std::ostream& err);
 
 }  // namespace granjet

@@ -7,6 +7,7 @@
 #include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "analysis/checkpoint_file.hpp"
@@ -18,6 +19,7 @@
 #include "run/backend_factory.hpp"
 #include "run/checkpoint_schedule.hpp"
 #include "run/ensemble_output.hpp"
+#include "run/failure_report.hpp"
 #include "run/frame_output.hpp"
 #include "run/interrupts.hpp"
 #include "run/output_paths.hpp"
@@ -400,72 +402,86 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
   const analysis::FileSummary stored = analysis::read_summary(partial);
   refuse_several_ranks("resume", stored.backend);
   const MpiSession mpi;  // for mpirun -n K with K > 1: a checkpoint resumes on any K
-  const bool leader = RankTeam::world().rank() == 0;
-  if (!stored.checkpoint)
-    throw InputError(partial.string(),
-                     "has no checkpoint beside it (" +
-                         analysis::checkpoint_path(partial).filename().string() +
-                         "): the run stopped before its first run.checkpoint_interval; run it "
-                         "again");
-  for (const std::string& assignment : options.overrides) {
-    const std::string key = assignment.substr(0, assignment.find('='));
-    if (std::find(kResumableKeys.begin(), kResumableKeys.end(), key) == kResumableKeys.end())
-      throw InputError(key,
-                       "cannot change on resume (it would make another run); allowed: "
-                       "run.t_end, run.threads, run.progress_interval");
-  }
-  // The scene as requested: the backend resolves it again, as it did for the run.
-  std::istringstream ini(stored.requested_scene_ini.empty() ? stored.scene_ini
-                                                            : stored.requested_scene_ini);
-  const Scene scene = parse_scene(ini, partial.string() + " (stored scene)", options.overrides);
-  if (scene.run.t_end < stored.checkpoint_time)
-    throw InputError("run.t_end", std::to_string(scene.run.t_end) +
-                                      " lies before the checkpoint at t = " +
-                                      std::to_string(stored.checkpoint_time));
-  check_run_budget(check_backend(stored.backend, scene).resolved, stored.backend,
-                   physical_memory_bytes());
-  RunOptions run;
-  run.backend = stored.backend;
-  run.summary = options.summary;
-  run.quiet = options.quiet;
-  run.log = options.log;
-  run.profile = options.profile;
-  run.checkpoint_on_signal = options.checkpoint_on_signal;
-  const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
-  std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
-  std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });
-  if (leader) check_outputs(partial, outputs);  // rank 0 writes: the others would find its files
-  // Every rank reads it, a checkpoint split over ranks only its shares of the grains; rank 0
-  // writes to it only once the simulator is made, which all ranks make together.
   const RankTeam ranks = RankTeam::world();
-  const StateArchive checkpoint = analysis::read_checkpoint_file(analysis::checkpoint_path(partial),
-                                                                 {ranks.rank(), ranks.size()});
+  const bool leader = ranks.rank() == 0;
+  Scene scene;
+  RunOptions run;
+  const std::filesystem::path out_file = std::filesystem::path(partial).replace_extension();
+  std::optional<StateArchive> checkpoint;
+  const std::optional<int> refused = check_on_every_rank(
+      [&] {
+        if (!stored.checkpoint)
+          throw InputError(partial.string(),
+                           "has no checkpoint beside it (" +
+                               analysis::checkpoint_path(partial).filename().string() +
+                               "): the run stopped before its first run.checkpoint_interval; run "
+                               "it again");
+        for (const std::string& assignment : options.overrides) {
+          const std::string key = assignment.substr(0, assignment.find('='));
+          if (std::find(kResumableKeys.begin(), kResumableKeys.end(), key) == kResumableKeys.end())
+            throw InputError(key,
+                             "cannot change on resume (it would make another run); allowed: "
+                             "run.t_end, run.threads, run.progress_interval");
+        }
+        // The scene as requested: the backend resolves it again, as it did for the run.
+        std::istringstream ini(stored.requested_scene_ini.empty() ? stored.scene_ini
+                                                                  : stored.requested_scene_ini);
+        scene = parse_scene(ini, partial.string() + " (stored scene)", options.overrides);
+        if (scene.run.t_end < stored.checkpoint_time)
+          throw InputError("run.t_end", std::to_string(scene.run.t_end) +
+                                            " lies before the checkpoint at t = " +
+                                            std::to_string(stored.checkpoint_time));
+        check_run_budget(check_backend(stored.backend, scene).resolved, stored.backend,
+                         physical_memory_bytes());
+        run.backend = stored.backend;
+        run.summary = options.summary;
+        run.quiet = options.quiet;
+        run.log = options.log;
+        run.profile = options.profile;
+        run.checkpoint_on_signal = options.checkpoint_on_signal;
+        std::vector<OutputPath> outputs = run_outputs(out_file, run.summary);
+        std::erase_if(outputs, [&](const OutputPath& o) { return o.path == partial; });
+        // Rank 0 writes: the others would find its files.
+        if (leader) check_outputs(partial, outputs);
+        // Every rank reads it, a checkpoint split over ranks only its shares of the grains;
+        // rank 0 writes to it only once the simulator is made, which all ranks make together.
+        checkpoint = analysis::read_checkpoint_file(analysis::checkpoint_path(partial),
+                                                    {ranks.rank(), ranks.size()});
+      },
+      std::cerr);
+  if (refused) return *refused;
   if (!options.quiet && leader)
     out << "resuming " << out_file.string() << " at t = " << stored.checkpoint_time << "\n";
   return with_dimension(scene.dimension, [&](auto d) {
-    return run_scene<d>(scene, run, out_file, out, &checkpoint);
+    return run_scene<d>(scene, run, out_file, out, &*checkpoint);
   });
 }
 
 int run_command(const RunOptions& options, std::ostream& out) {
   const MpiSession mpi;  // for mpirun -n K with K > 1
-  if (mpi.active() && !options.seeds.empty())
-    throw InputError("--seeds",
-                     "runs its seeds one after another on one process; spread seeds "
-                     "over ranks with mpirun -n K granjet campaign");
-  const Scene scene = load_scene(options.scene_file, options.overrides);
-  check_run_budget(check_backend(options.backend, scene).resolved, options.backend,
-                   physical_memory_bytes());
+  Scene scene;
   std::filesystem::path out_file = options.out;
   if (out_file.empty()) out_file = options.scene_file.stem().string() + ".h5";
-  std::vector<OutputPath> outputs = run_outputs(out_file, options.summary);
-  for (const std::uint64_t seed : options.seeds)
-    for (OutputPath& o :
-         run_outputs(member_file(out_file, seed), member_file(options.summary, seed),
-                     "seed " + std::to_string(seed) + "'s"))
-      outputs.push_back(std::move(o));
-  // Rank 0 writes: the others would find its files.
-  if (RankTeam::world().rank() == 0) check_outputs(options.scene_file, outputs);
+  const std::optional<int> refused = check_on_every_rank(
+      [&] {
+        if (mpi.active() && !options.seeds.empty())
+          throw InputError("--seeds",
+                           "runs its seeds one after another on one process; spread seeds "
+                           "over ranks with mpirun -n K granjet campaign");
+        scene = load_scene(options.scene_file, options.overrides);
+        check_run_budget(check_backend(options.backend, scene).resolved, options.backend,
+                         physical_memory_bytes());
+        std::vector<OutputPath> outputs = run_outputs(out_file, options.summary);
+        for (const std::uint64_t seed : options.seeds)
+          for (OutputPath& o :
+               run_outputs(member_file(out_file, seed), member_file(options.summary, seed),
+                           "seed " + std::to_string(seed) + "'s"))
+            outputs.push_back(std::move(o));
+        // Rank 0 writes: the others would find its files.
+        if (RankTeam::world().rank() == 0) check_outputs(options.scene_file, outputs);
+      },
+      std::cerr);
+  if (refused) return *refused;
   return with_dimension(scene.dimension, [&](auto d) {
     if (!options.seeds.empty()) return run_ensemble<d>(scene, options, out_file, out);
     return run_scene<d>(scene, options, out_file, out, nullptr);

@@ -41,6 +41,27 @@ class CommandTest : public ::testing::Test {
     err_ = s.str();
     return WEXITSTATUS(status);
   }
+#ifdef GRANJET_MPIEXEC
+  // The start of a command line that runs over `ranks` MPI ranks: root needs
+  // --allow-run-as-root, several ranks on a machine of any size need --oversubscribe.
+  static std::string mpiexec(int ranks) {
+    return std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe -n " +
+           std::to_string(ranks) + " ";
+  }
+  // Runs granjet with `args` over `ranks` ranks, ended after 5 minutes should it hang;
+  // returns mpiexec's exit code, its stdout and stderr into err_.
+  int granjet_over_ranks(int ranks, const std::string& args) {
+    const std::filesystem::path said = dir_ / "mpiexec.txt";
+    const std::string cmd = "timeout 300 " + mpiexec(ranks) + GRANJET_BINARY + " " + args + " > " +
+                            said.string() + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(said);
+    std::stringstream s;
+    s << in.rdbuf();
+    err_ = s.str();
+    return WEXITSTATUS(status);
+  }
+#endif
   static std::string scene(const std::string& name) {
     return std::string(GRANJET_SCENES_DIR) + "/" + name;
   }

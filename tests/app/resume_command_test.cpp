@@ -260,12 +260,6 @@ TEST_F(Resume, ResumeMayExtendTheRunAndNothingElse) {
 }
 
 #ifdef GRANJET_HAS_MPI
-// Root needs --allow-run-as-root; several ranks on a machine of any size need --oversubscribe.
-std::string mpiexec(int ranks) {
-  return std::string(GRANJET_MPIEXEC) + " --allow-run-as-root --oversubscribe -n " +
-         std::to_string(ranks) + " ";
-}
-
 // A run over two ranks, killed (kill -9, every rank) after a checkpoint that holds each rank's
 // share of the grains apart, resumes on one process and over three ranks into the run one
 // process makes straight through.
@@ -299,6 +293,13 @@ TEST_F(Resume, KilledRunResumesOverTwoRanks) {
   const fs::path partial = dir_ / "killed.h5.partial";
   ASSERT_TRUE(run_and_kill(base + paths("killed"), partial, 4.0))
       << "the run ended before it could be killed";
+  // A refused resume over ranks: the error once, every rank ended, the run kept as it was.
+  const std::string before = bytes_of(partial);
+  EXPECT_EQ(granjet_over_ranks(2, "resume " + partial.string() + " --set jet.grains=5 --quiet"), 2)
+      << err_;
+  EXPECT_NE(err_.find("jet.grains: cannot change on resume"), std::string::npos) << err_;
+  EXPECT_EQ(err_.find("cannot change", err_.find("cannot change") + 1), std::string::npos) << err_;
+  EXPECT_EQ(bytes_of(partial), before);
   const std::string cmd = mpiexec(2) + GRANJET_BINARY + " resume " + partial.string() +
                           " --quiet --summary " + (dir_ / "killed.json").string() + " > " +
                           (dir_ / "mpi.txt").string() + " 2>&1";

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +13,8 @@
 
 namespace granjet::testing {
 namespace {
+
+namespace fs = std::filesystem;
 
 class RunOverRanks : public CommandTest {};
 
@@ -45,6 +48,34 @@ TEST_F(RunOverRanks, TwoRanksWriteTheFileOfOne) {
     }
   }
   EXPECT_TRUE(ghosts);
+}
+
+// How often `what` occurs in `text`.
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Bad input over ranks ends every rank with the error named once and the bad-input exit code:
+// an unknown key, found on every rank, and an output directory that does not exist, which
+// only rank 0 checks (the others used to wait for it forever). No rank aborts the others
+// before the message is out, and nothing is written.
+TEST_F(RunOverRanks, BadInputEndsEveryRankWithOneMessage) {
+  const std::string run = "run " + scene("jet3d.ini") + " --quiet --no-log";
+  const fs::path out = dir_ / "bad.h5";
+  struct Case {
+    std::string args, message;
+  };
+  for (const Case& c :
+       {Case{" --set run.no_such_key=1 --out " + out.string(), "run.no_such_key: unknown key"},
+        Case{" --out " + (dir_ / "missing" / "bad.h5").string(), "no directory"}}) {
+    EXPECT_EQ(granjet_over_ranks(2, run + c.args), 2) << err_;
+    EXPECT_EQ(occurrences(err_, c.message), 1u) << err_;
+    EXPECT_EQ(err_.find("MPI_ABORT"), std::string::npos) << err_;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir_ / "bad.h5.partial"));
 }
 #endif
 
