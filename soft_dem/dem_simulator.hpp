@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/id_index.hpp"
 #include "core/neighbour_list.hpp"
 #include "core/rank_team.hpp"
 #include "core/scene.hpp"
@@ -208,8 +209,9 @@ class DemSimulator final : public Simulator<D> {
   // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see
   // ForcePass::pass); kGhostBit marks a ghost.
   std::vector<std::uint8_t> forced_;
-  static constexpr std::uint32_t kRemoved = UINT32_MAX;
-  std::vector<std::uint32_t> index_of_id_;  // kRemoved once a grain has left the region
+  static constexpr std::uint32_t kRemoved = IdIndex::kAbsent;
+  IdIndex index_of_id_;   // the grains held here; kRemoved for the others, and once removed
+  GrainId id_limit_ = 0;  // one past the scene's largest id
 
   CellGrid<D> grid_;
   PairList pairs_;

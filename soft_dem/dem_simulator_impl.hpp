@@ -62,7 +62,7 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
   if (!ranks.alone())  // ids below 2^53: exact as doubles
     max_id =
         static_cast<GrainId>(over_all_ranks(ranks, static_cast<double>(max_id), &RankTeam::max));
-  index_of_id_.assign(static_cast<std::size_t>(max_id) + 1, 0);
+  id_limit_ = max_id + 1;
   if (!ranks.alone()) {
     if constexpr (Space::kPeriodic)
       throw InputError("mpirun -n " + std::to_string(ranks.size()),
@@ -329,8 +329,7 @@ DemSimulator<D, Law, kMono, Space>::force_pass(Advance&& advance, Coast&& coast)
     {
       std::optional<PhaseProfile::Timer> tethering;
       if (team_index() == 0) tethering.emplace(&this->profile(), phase_.tethers);
-      wall_.add_forces_share(
-          p_, [this](GrainId id) { return index_of(id); }, std::span<Vec<D>>(force_));
+      wall_.add_forces_share(p_, std::span<Vec<D>>(force_));
     }
     const double seconds = seconds_since(start);  // summed over the team, as the loops' are
 #pragma omp atomic
@@ -528,7 +527,6 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped(std::vector<double>& wei
       keep.push_back(i);
       continue;
     }
-    index_of_id_[p_.id()[i]] = kRemoved;
     if (!over_ranks()) removed.push_back(carried(i));
   }
   for (const Carried& c : removed) {
@@ -622,8 +620,9 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
     force_[i].setZero();  // rebuilds come between force passes
     forced_[i] = 2;       // unknown after the reordering: assume a force at the last pass
     torque_[i] = Dim<D>::zero_spin();
-    index_of_id_[id[i]] = static_cast<std::uint32_t>(i);
   }
+  index_of_id_.assign(id, threads_);
+  if (tethered_) wall_.locate([this](GrainId id) { return index_of(id); }, p_.size());
 
   const auto kind = p_.kind();
   timing.emplace(&this->profile(), phase_.rebuild_pairs);
@@ -642,7 +641,6 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
     for (std::int64_t i = 0; i < n; ++i)
       if (!owned_[i]) forced_[i] |= kGhostBit;
     domain_->list_halo(p_.position(), p_.id(), owned_);
-    if (tethered_) wall_.keep_held([this](GrainId id) { return index_of(id); }, p_.size());
   }
   timing.emplace(&this->profile(), phase_.rebuild_rows);
   pair_row_.resize(pairs_.size());
@@ -721,14 +719,11 @@ void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
     const double r = p_.radius()[i];
     inv_inertia_[i] = p_.inverse_mass()[i] / (Dim<D>::kInertiaFactor * r * r);
   }
-  std::fill(index_of_id_.begin(), index_of_id_.end(), kRemoved);
-  for (std::size_t i = 0; i < n; ++i) {
-    const GrainId id = p_.id()[i];
-    if (id < 0 || static_cast<std::size_t>(id) >= index_of_id_.size())
+  for (const GrainId id : p_.id())
+    if (id < 0 || id >= id_limit_)
       throw std::runtime_error("checkpoint holds grain " + std::to_string(id) +
                                ", which this scene does not build");
-    index_of_id_[id] = static_cast<std::uint32_t>(i);
-  }
+  index_of_id_.assign(p_.id(), threads_);
   const auto pair = a.values<GrainId>("dem/history/pair");
   const auto shear = a.rows<Vec<D>>("dem/history/shear");
   if (pair.size() != 2 * shear.size())
@@ -841,9 +836,7 @@ void DemSimulator<D, Law, kMono, Space>::sample_forces(ForceSample<D>& out) cons
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
     add(i, kPlateId, g, plate_->force(i, g, v_rel));
   });
-  if (tethered_)
-    wall_.add_forces(
-        p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(out.total));
+  if (tethered_) wall_.add_forces(p_, std::span<Vec<D>>(out.total));
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -927,11 +920,9 @@ EnergyBalance DemSimulator<D, Law, kMono, Space>::energy() const {
     if (mine(i)) elastic.add(plate_->elastic_energy(i, g));
   });
   if (tethered_)
-    wall_.for_each_energy_term(
-        p_, [this](GrainId id) { return index_of(id); },
-        [&](std::size_t, std::size_t i, double term) {
-          if (mine(i)) elastic.add(term);
-        });
+    wall_.for_each_energy_term(p_, [&](std::size_t, std::size_t i, double term) {
+      if (mine(i)) elastic.add(term);
+    });
   if (over_ranks())
     for (ExactSum* sum : {&kinetic, &rotational, &elastic}) domain_->team().sum(sum->words());
   EnergyBalance e;

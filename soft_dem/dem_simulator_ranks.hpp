@@ -85,7 +85,7 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   const RankTeam& team = domain.team();
   const std::size_t n = p_.size();
   const auto x = p_.position();
-  for (std::size_t i = 0; i < n; ++i) index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
+  index_of_id_.assign(p_.id(), threads_);
 
   // Cut anew where the work grew uneven: each grain weighted by its share of the pass, scaled
   // so that a rank's own grains weigh its measured work (its ghosts nothing).
@@ -174,7 +174,6 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
 
   // The kept grains stay in place or fill a dropped grain's (the rebuild's cell sort orders
   // them after), and the arrivals follow them.
-  for (GrainId id : p_.id()) index_of_id_[id] = kRemoved;
   for (std::size_t k = 0; k < keep.size(); ++k) owned_[keep[k]] = keep_owned[k];
   const typename Particles<D>::Moves moves = Particles<D>::compaction(keep);
   const std::size_t kept = keep.size(), room = arrived.size();
@@ -203,8 +202,7 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   // The first grain of each history whose partner was not here is now owned here, and the
   // partner, within the contact's reach of it, is held here too (owned, or a ghost): the
   // history goes on to the partner's owner. A partner held nowhere was removed, as above.
-  for (std::size_t i = 0; i < p_.size(); ++i)
-    index_of_id_[p_.id()[i]] = static_cast<std::uint32_t>(i);
+  index_of_id_.assign(p_.id(), threads_);
   std::vector<std::vector<HistoryRecord<D>>> to_partner(domain.ranks());
   for (const History& h : partner_unseen) {
     const std::uint32_t b = index_of_id_[h.b];
@@ -478,9 +476,7 @@ std::vector<Vec<D>> DemSimulator<D, Law, kMono, Space>::force_totals_here() cons
   for_each_plate_contact([&](std::size_t i, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
     if (owned_[i]) total[i] += plate_->force(i, g, v_rel);
   });
-  if (tethered_)
-    wall_.add_forces(
-        p_, [this](GrainId g) { return index_of(g); }, std::span<Vec<D>>(total));
+  if (tethered_) wall_.add_forces(p_, std::span<Vec<D>>(total));
   return total;
 }
 

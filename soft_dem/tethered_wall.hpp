@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -39,64 +38,66 @@ class TetheredWall {
         if (rest <= bond_range) bonds_.push_back({p.id()[i], p.id()[j], rest});
       }
     index_bonds();
+    std::unordered_map<GrainId, std::size_t> index;
+    for (std::size_t i : walls) index[p.id()[i]] = i;
+    locate([&](GrainId id) { return index.at(id); }, p.size());
   }
 
   std::size_t bonds() const { return bonds_.size(); }
 
-  // Over ranks, after each rebuild: the springs to visit are those of the grains held here
-  // (index_of(id) below `grains`), so that no rank visits the whole target's. All of them until
-  // called. The order of the sums stays that of all springs.
+  // Where the springs' grains lie among the `grains` held here: index_of maps a grain id to
+  // its index (`grains` or more for one not held). Called after every reordering of the grains
+  // (a neighbour rebuild), so that the springs, visited every step, look up no id. Over ranks
+  // only the springs of the grains held here are visited, so that no rank visits the whole
+  // target's; the order of the sums stays that of all springs.
   template <class IndexOf>
-  void keep_held(IndexOf&& index_of, std::size_t grains) {
+  void locate(IndexOf&& index_of, std::size_t grains) {
+    const auto at = [&](GrainId id) {
+      const std::size_t i = index_of(id);
+      return i < grains ? static_cast<std::uint32_t>(i) : kAway;
+    };
     held_bonds_.clear();
     held_anchors_.clear();
-    for (std::uint32_t k = 0; k < bonds_.size(); ++k)
-      if (index_of(bonds_[k].i) < grains || index_of(bonds_[k].j) < grains)
-        held_bonds_.push_back(k);
+    for (std::uint32_t k = 0; k < bonds_.size(); ++k) {
+      const HeldBond b{k, at(bonds_[k].i), at(bonds_[k].j)};
+      if (b.i != kAway || b.j != kAway) held_bonds_.push_back(b);
+    }
     for (std::uint32_t a = 0; a < anchors_.size(); ++a)
-      if (index_of(anchors_[a].id) < grains) held_anchors_.push_back(a);
+      if (const std::uint32_t i = at(anchors_[a].id); i != kAway) held_anchors_.push_back({a, i});
   }
 
-  // Adds the tether forces; index_of maps a grain id to its current index (p.size() or more for
-  // a grain held by another rank: its springs are skipped, and a bond to it gives NaN). `threads`
-  // share the bonds, then the grains; each grain adds its anchor's force, then its bonds' in bond
-  // order, the same sums for any thread count.
-  template <class IndexOf>
-  void add_forces(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force,
-                  int threads = 1) const {
+  // Adds the tether forces to the grains where locate() last found them (a bond to a grain
+  // held by another rank gives NaN, and a grain held elsewhere is skipped). `threads` share the
+  // bonds, then the grains; each grain adds its anchor's force, then its bonds' in bond order,
+  // the same sums for any thread count.
+  void add_forces(const Particles<D>& p, std::span<Vec<D>> force, int threads = 1) const {
 #pragma omp parallel num_threads(threads) if (threads > 1)
-    add_forces_share(p, index_of, force);
+    add_forces_share(p, force);
   }
 
   // The same from inside a parallel region, on every thread of its team (two worksharing
   // loops, each ending in a barrier).
-  template <class IndexOf>
-  void add_forces_share(const Particles<D>& p, IndexOf&& index_of, std::span<Vec<D>> force) const {
+  void add_forces_share(const Particles<D>& p, std::span<Vec<D>> force) const {
     const auto x = p.position();
     const auto v = p.velocity();
     const auto bonds = static_cast<std::int64_t>(held_bonds_.size());
     const auto anchors = static_cast<std::int64_t>(held_anchors_.size());
-    const std::size_t grains = p.size();
 #pragma omp for schedule(static)
     for (std::int64_t held = 0; held < bonds; ++held) {  // the force on the bond's first grain
-      const std::uint32_t k = held_bonds_[held];
-      const Bond& b = bonds_[k];
-      const std::size_t i = index_of(b.i), j = index_of(b.j);
-      if (i >= grains || j >= grains) {  // a grain only another rank holds: unknown here
+      const auto [k, i, j] = held_bonds_[held];
+      if (i == kAway || j == kAway) {  // a grain only another rank holds: unknown here
         bond_force_[k].setConstant(std::numeric_limits<double>::quiet_NaN());
         continue;
       }
       const Vec<D> r = x[i] - x[j];
       const double dist = r.norm();
       const Vec<D> n = r / dist;
-      const double f = -spring_ * (dist - b.rest) - damping_ * (v[i] - v[j]).dot(n);
+      const double f = -spring_ * (dist - bonds_[k].rest) - damping_ * (v[i] - v[j]).dot(n);
       bond_force_[k] = f * n;
     }
 #pragma omp for schedule(static)
     for (std::int64_t held = 0; held < anchors; ++held) {  // a held grain's bonds are all held
-      const std::uint32_t a = held_anchors_[held];
-      const std::size_t i = index_of(anchors_[a].id);
-      if (i >= grains) continue;
+      const auto [a, i] = held_anchors_[held];
       Vec<D> sum = force[i] - (spring_ * (x[i] - anchors_[a].position) + damping_ * v[i]);
       for (std::uint32_t m = bonds_of_first_[a]; m < bonds_of_first_[a + 1]; ++m) {
         const std::int64_t signed_bond = bonds_of_[m];  // k + 1 for a first grain, -(k + 1)
@@ -112,17 +113,13 @@ class TetheredWall {
   // Calls visit(term, i, energy) for each spring's elastic energy: the anchors', then the
   // bonds' (term counts both); i is the grain whose rank adds the term (the anchored grain, a
   // bond's first grain). Springs with a grain not held here are left out.
-  template <class IndexOf, class Visit>
-  void for_each_energy_term(const Particles<D>& p, IndexOf&& index_of, Visit&& visit) const {
+  template <class Visit>
+  void for_each_energy_term(const Particles<D>& p, Visit&& visit) const {
     const auto x = p.position();
-    const std::size_t grains = p.size();
-    for (std::uint32_t a : held_anchors_) {
-      const std::size_t i = index_of(anchors_[a].id);
-      if (i < grains) visit(a, i, 0.5 * spring_ * (x[i] - anchors_[a].position).squaredNorm());
-    }
-    for (std::uint32_t k : held_bonds_) {
-      const std::size_t i = index_of(bonds_[k].i), j = index_of(bonds_[k].j);
-      if (i >= grains || j >= grains) continue;
+    for (const auto [a, i] : held_anchors_)
+      visit(a, i, 0.5 * spring_ * (x[i] - anchors_[a].position).squaredNorm());
+    for (const auto [k, i, j] : held_bonds_) {
+      if (i == kAway || j == kAway) continue;
       const double stretch = (x[i] - x[j]).norm() - bonds_[k].rest;
       visit(anchors_.size() + k, i, 0.5 * spring_ * stretch * stretch);
     }
@@ -157,10 +154,8 @@ class TetheredWall {
       bonds_of_first_.push_back(static_cast<std::uint32_t>(bonds_of_.size()));
     }
     bond_force_.resize(bonds_.size());
-    held_bonds_.resize(bonds_.size());
-    std::iota(held_bonds_.begin(), held_bonds_.end(), 0u);
-    held_anchors_.resize(anchors_.size());
-    std::iota(held_anchors_.begin(), held_anchors_.end(), 0u);
+    held_bonds_.clear();  // until locate()
+    held_anchors_.clear();
   }
 
   struct Anchor {
@@ -170,6 +165,14 @@ class TetheredWall {
   struct Bond {
     GrainId i, j;
     double rest;
+  };
+  // A spring visited here, with where its grains lie (kAway: held by another rank only).
+  static constexpr std::uint32_t kAway = std::numeric_limits<std::uint32_t>::max();
+  struct HeldBond {
+    std::uint32_t bond, i, j;
+  };
+  struct HeldAnchor {
+    std::uint32_t anchor, i;
   };
   double spring_ = 0.0;
   double damping_ = 0.0;
@@ -214,7 +217,8 @@ class TetheredWall {
   std::vector<Bond> bonds_;
   std::vector<std::uint32_t> bonds_of_first_{0};
   std::vector<std::int64_t> bonds_of_;
-  std::vector<std::uint32_t> held_bonds_, held_anchors_;  // the springs visited (keep_held)
+  std::vector<HeldBond> held_bonds_;  // the springs visited (locate)
+  std::vector<HeldAnchor> held_anchors_;
   mutable std::vector<Vec<D>>
       bond_force_;  // add_forces_share's scratch: each bond's force on its first grain
 };
