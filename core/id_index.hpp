@@ -31,34 +31,14 @@ class IdIndex {
     key_.assign(slots, kEmpty);
     index_.resize(slots);
     const auto n = static_cast<std::int64_t>(ids.size());
-    bool repeated = false, negative = false;
-    // Each thread claims its slots by an atomic compare-exchange on the key: where a probe
-    // ends may depend on the threads' timing, what a lookup finds does not.
-#pragma omp parallel for num_threads(threads) schedule(static) \
-    reduction(||                                               \
-              : repeated, negative) if (threads > 1)
-    for (std::int64_t i = 0; i < n; ++i) {
-      const GrainId id = ids[i];
-      if (id < 0) {
-        negative = true;
-        continue;
-      }
-      for (std::size_t s = slot_of(id);; s = (s + 1) & (slots - 1)) {
-        GrainId seen = kEmpty;
-        if (std::atomic_ref<GrainId>(key_[s]).compare_exchange_strong(seen, id,
-                                                                      std::memory_order_relaxed)) {
-          index_[s] = static_cast<std::uint32_t>(i);
-          break;
-        }
-        if (seen == id) {
-          repeated = true;
-          break;
-        }
-      }
+    bool bad = false;
+    if (threads <= 1) {
+      for (std::int64_t i = 0; i < n; ++i) bad |= !insert<false>(ids[i], i);
+    } else {
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(|| : bad)
+      for (std::int64_t i = 0; i < n; ++i) bad = !insert<true>(ids[i], i) || bad;
     }
-    if (repeated || negative)
-      throw std::logic_error(repeated ? "IdIndex: a grain id held twice"
-                                      : "IdIndex: a negative id");
+    if (bad) throw std::logic_error("IdIndex: a grain id held twice, or a negative one");
   }
 
   // Where grain `id` lies, kAbsent when it is not held.
@@ -83,6 +63,31 @@ class IdIndex {
   std::size_t slot_of(GrainId id) const {
     return static_cast<std::size_t>((static_cast<std::uint64_t>(id) * 0x9E3779B97F4A7C15ull) >>
                                     shift_);
+  }
+
+  // Puts id at index i; false for a negative id or one already held. kShared: other threads
+  // insert too, and each claims its slot by an atomic compare-exchange on the key (where a
+  // probe ends may then depend on the threads' timing, what a lookup finds does not); alone, a
+  // plain store does.
+  template <bool kShared>
+  bool insert(GrainId id, std::int64_t i) {
+    if (id < 0) return false;
+    const std::size_t mask = key_.size() - 1;
+    for (std::size_t s = slot_of(id);; s = (s + 1) & mask) {
+      GrainId seen = kEmpty;
+      if constexpr (kShared) {
+        std::atomic_ref<GrainId>(key_[s]).compare_exchange_strong(seen, id,
+                                                                  std::memory_order_relaxed);
+      } else {
+        seen = key_[s];
+        if (seen == kEmpty) key_[s] = id;
+      }
+      if (seen == kEmpty) {
+        index_[s] = static_cast<std::uint32_t>(i);
+        return true;
+      }
+      if (seen == id) return false;
+    }
   }
 
   std::vector<GrainId> key_;

@@ -210,7 +210,9 @@ class DemSimulator final : public Simulator<D> {
   // ForcePass::pass); kGhostBit marks a ghost.
   std::vector<std::uint8_t> forced_;
   static constexpr std::uint32_t kRemoved = IdIndex::kAbsent;
-  IdIndex index_of_id_;   // the grains held here; kRemoved for the others, and once removed
+  // The grains held here (kRemoved for the others, and once removed), assigned anew after
+  // every reordering of the grains.
+  IdIndex index_of_id_;
   GrainId id_limit_ = 0;  // one past the scene's largest id
 
   CellGrid<D> grid_;

@@ -63,6 +63,7 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
     max_id =
         static_cast<GrainId>(over_all_ranks(ranks, static_cast<double>(max_id), &RankTeam::max));
   id_limit_ = max_id + 1;
+  index_of_id_.assign(p_.id());
   if (!ranks.alone()) {
     if constexpr (Space::kPeriodic)
       throw InputError("mpirun -n " + std::to_string(ranks.size()),
@@ -544,6 +545,7 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped(std::vector<double>& wei
   }
   if (!weight.empty()) Particles<D>::gather_one(weight, keep, threads_);
   if (plate_) plate_->gather(keep);
+  index_of_id_.assign(p_.id(), threads_);
 }
 
 template <int D, class Law, bool kMono, class Space>

@@ -85,7 +85,6 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   const RankTeam& team = domain.team();
   const std::size_t n = p_.size();
   const auto x = p_.position();
-  index_of_id_.assign(p_.id(), threads_);
 
   // Cut anew where the work grew uneven: each grain weighted by its share of the pass, scaled
   // so that a rank's own grains weigh its measured work (its ghosts nothing).
