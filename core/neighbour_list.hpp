@@ -3,6 +3,7 @@
 // moved more than skin/2 since the build (DisplacementWatch), not rebuilt every step.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -64,11 +65,17 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
     while (c < grid.cells() && std::size_t{grid.start(c)} * threads < t * n) ++c;
     cell_begin[t] = c;
   }
-  std::vector<std::vector<std::uint32_t>> partners(threads);
+  // Each chunk's pairs, in lists kept from build to build (fresh memory costs a page fault
+  // per 4 kB: 24 MB of them at each rebuild of 5e5 grains). The calling thread's lists: each
+  // thread of the team below has its own `chunk_lists`.
+  static thread_local std::vector<std::vector<std::uint32_t>> chunk_lists;
+  chunk_lists.resize(std::max<std::size_t>(chunk_lists.size(), threads));
+  std::vector<std::uint32_t>* partners = chunk_lists.data();
   std::vector<Pairs> late(threads);  // (row, partner) found after the row was closed
 #pragma omp parallel for num_threads(threads) schedule(static, 1) if (threads > 1)
   for (int t = 0; t < threads; ++t) {
     std::vector<std::uint32_t>& partner = partners[t];
+    partner.clear();
     std::size_t count = 0;  // partner[0 .. count) are this chunk's pairs
     Pairs ranges;           // the forward cells' grains
     for (std::size_t c = cell_begin[t]; c < cell_begin[t + 1]; ++c) {
