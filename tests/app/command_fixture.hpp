@@ -34,8 +34,13 @@ class CommandTest : public ::testing::Test {
     const std::filesystem::path err = dir_ / "stderr.txt";
     const std::string cmd = std::string(GRANJET_BINARY) + " " + args + " > " +
                             (dir_ / "stdout.txt").string() + " 2> " + err.string();
+    return run_reading(cmd, err);
+  }
+  // Runs the shell command `cmd`; returns its exit code, the text of `said` (where it wrote)
+  // into err_.
+  int run_reading(const std::string& cmd, const std::filesystem::path& said) {
     const int status = std::system(cmd.c_str());
-    std::ifstream in(err);
+    std::ifstream in(said);
     std::stringstream s;
     s << in.rdbuf();
     err_ = s.str();
@@ -54,12 +59,7 @@ class CommandTest : public ::testing::Test {
     const std::filesystem::path said = dir_ / "mpiexec.txt";
     const std::string cmd = "timeout 300 " + mpiexec(ranks) + GRANJET_BINARY + " " + args + " > " +
                             said.string() + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    std::ifstream in(said);
-    std::stringstream s;
-    s << in.rdbuf();
-    err_ = s.str();
-    return WEXITSTATUS(status);
+    return run_reading(cmd, said);
   }
 #endif
   static std::string scene(const std::string& name) {
