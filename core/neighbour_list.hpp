@@ -65,9 +65,9 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
     while (c < grid.cells() && std::size_t{grid.start(c)} * threads < t * n) ++c;
     cell_begin[t] = c;
   }
-  // Each chunk's pairs, in lists kept from build to build (fresh memory costs a page fault
-  // per 4 kB: 24 MB of them at each rebuild of 5e5 grains). The calling thread's lists: each
-  // thread of the team below has its own `chunk_lists`.
+  // Each chunk's pairs, in lists kept from build to build: fresh memory costs a page fault per
+  // 4 kB, and a rebuild's lists are about as long as the last's. The calling thread's lists:
+  // each thread of the team below has its own `chunk_lists`.
   static thread_local std::vector<std::vector<std::uint32_t>> chunk_lists;
   chunk_lists.resize(std::max<std::size_t>(chunk_lists.size(), threads));
   std::vector<std::uint32_t>* partners = chunk_lists.data();
