@@ -71,14 +71,17 @@ class H5mdFile {
   H5mdFile(std::filesystem::path path, int dimension);
   void write_checkpoint(StateArchive archive, const ShareOfRank& share_of);
   void replace_scenes(const std::string& scene_ini, const std::string& requested_scene_ini);
-  // A frame: begin_frame(), its rows in ascending stretches, end_frame().
+  // A frame: begin_frame(), its rows in ascending stretches and its contacts in pieces, in
+  // order, end_frame().
   void begin_frame();
   void write_grains(hsize_t first, hsize_t count, const GrainRows& rows);
+  // The frame's next contacts, after those written so far.
+  void write_contacts(const ContactRows& rows);
   // Where a frame's stretches are made ready, kept from frame to frame: fresh pages for each
   // cost more than filling them.
   GrainRows& stretch() { return stretch_; }
   // Returns the frame's grain count.
-  std::size_t end_frame(std::int64_t step, double time, const ContactRows& contacts);
+  std::size_t end_frame(std::int64_t step, double time);
   // Drops what a frame that failed half-way wrote: the file holds the frames before it.
   void drop_frame();
   std::size_t rows() const { return max_grains_; }
@@ -158,6 +161,8 @@ class H5mdFile {
   // The frame being written: the grains present in it so far, and the first row not yet written.
   hsize_t frame_present_ = 0;
   hsize_t frame_rows_done_ = 0;
+  hsize_t frame_contacts_ = 0;        // the frame's contacts written so far
+  hsize_t contact_width_before_ = 0;  // the contact axis before the frame, for drop_frame
   GrainRows stretch_;
   std::vector<double> box_;      // periodic edges, stored with every frame
   double frame_interval_ = 1.0;  // the dt observable
@@ -519,10 +524,13 @@ void H5mdFile::begin_frame() {
   require_open();
   for (Dataset* set : {&sets_.position, &sets_.velocity, &sets_.radius, &sets_.id, &sets_.present})
     append(*set, 0, H5T_NATIVE_DOUBLE, nullptr);
-  for (std::optional<Dataset>* set : {&sets_.omega, &sets_.force})
+  for (std::optional<Dataset>* set : {&sets_.omega, &sets_.force, &sets_.pairs, &sets_.normal_force,
+                                      &sets_.tangential_force, &sets_.overlap})
     if (*set) append(**set, 0, H5T_NATIVE_DOUBLE, nullptr);
   frame_present_ = 0;
   frame_rows_done_ = 0;
+  frame_contacts_ = 0;
+  contact_width_before_ = sets_.pairs ? sets_.pairs->extent[1] : 0;
 }
 
 void H5mdFile::write_grains(hsize_t first, hsize_t count, const GrainRows& rows) {
@@ -542,9 +550,27 @@ void H5mdFile::write_grains(hsize_t first, hsize_t count, const GrainRows& rows)
   frame_present_ += rows.present.size();
 }
 
-std::size_t H5mdFile::end_frame(std::int64_t step, double time, const ContactRows& rows) {
+// The contact axis grows with the most contacts of a frame so far, piece by piece: no more of
+// a frame's contacts need be held at once than a piece.
+void H5mdFile::write_contacts(const ContactRows& rows) {
   require_open();
-  const hsize_t contacts = rows.overlap.size();
+  if (!sets_.pairs) throw std::logic_error("H5mdWriter: this file stores no contacts");
+  const hsize_t count = rows.overlap.size();
+  for (Dataset* set :
+       {&*sets_.pairs, &*sets_.normal_force, &*sets_.tangential_force, &*sets_.overlap})
+    widen(*set, frame_contacts_ + count);
+  write_last_row(*sets_.pairs, frame_contacts_, count, H5T_NATIVE_INT64, rows.pairs.data());
+  write_last_row(*sets_.normal_force, frame_contacts_, count, H5T_NATIVE_DOUBLE,
+                 rows.normal_force.data());
+  write_last_row(*sets_.tangential_force, frame_contacts_, count, H5T_NATIVE_DOUBLE,
+                 rows.tangential_force.data());
+  write_last_row(*sets_.overlap, frame_contacts_, count, H5T_NATIVE_DOUBLE, rows.overlap.data());
+  frame_contacts_ += count;
+}
+
+std::size_t H5mdFile::end_frame(std::int64_t step, double time) {
+  require_open();
+  const hsize_t contacts = frame_contacts_;
   const auto grains = static_cast<std::int64_t>(frame_present_);
   const auto contact_count = static_cast<std::int64_t>(contacts);
   append(sets_.frame_step, 1, H5T_NATIVE_INT64, &step);
@@ -557,15 +583,6 @@ std::size_t H5mdFile::end_frame(std::int64_t step, double time, const ContactRow
     for (int k = 0; k < dimension_; ++k) edges[k * (dimension_ + 1)] = box_[k];
     append(*sets_.box, dimension_, H5T_NATIVE_DOUBLE, edges.data());
   }
-  if (sets_.pairs) {
-    for (Dataset* set :
-         {&*sets_.pairs, &*sets_.normal_force, &*sets_.tangential_force, &*sets_.overlap})
-      widen(*set, contacts);
-    append(*sets_.pairs, contacts, H5T_NATIVE_INT64, rows.pairs.data());
-    append(*sets_.normal_force, contacts, H5T_NATIVE_DOUBLE, rows.normal_force.data());
-    append(*sets_.tangential_force, contacts, H5T_NATIVE_DOUBLE, rows.tangential_force.data());
-    append(*sets_.overlap, contacts, H5T_NATIVE_DOUBLE, rows.overlap.data());
-  }
   // A run killed later still leaves this frame readable.
   ctx_.check(H5Fflush(file_.get(), H5F_SCOPE_LOCAL), "flush", "the file");
   frames_.push_back({time, frame_present_, contacts});
@@ -577,6 +594,13 @@ void H5mdFile::drop_frame() {
   const hsize_t frames = sets_.frame_step.extent[0];
   for (Dataset* set : sets_.per_frame())
     if (set->extent[0] > frames) truncate(*set, frames);
+  if (sets_.pairs)  // nor its contacts' width
+    for (Dataset* set :
+         {&*sets_.pairs, &*sets_.normal_force, &*sets_.tangential_force, &*sets_.overlap})
+      if (set->extent[1] > contact_width_before_) {
+        set->extent[1] = contact_width_before_;
+        ctx_.check(H5Dset_extent(set->handle.get(), set->extent.data()), "narrow", set->name);
+      }
 }
 
 void H5mdFile::write_observables(std::int64_t step, double time, const Observables& obs) {
@@ -785,27 +809,32 @@ class FrameRowsSink final : public FrameSink<D> {
     file_.write_grains(static_cast<hsize_t>(first), count, f);
   }
 
+  // Each piece is written as it comes.
   void contacts(std::span<const typename ForceSample<D>::Contact> contacts) override {
     if (!content_.contacts) return;
+    detail::H5mdFile::ContactRows& rows = contacts_;
+    rows.pairs.clear();
+    rows.normal_force.clear();
+    rows.tangential_force.clear();
+    rows.overlap.clear();
     // Pairs only: a contact with the plate (j = kPlateId) has no partner row to draw.
     for (const auto& c : contacts) {
       if (c.j == kPlateId) continue;
-      contacts_.pairs.insert(contacts_.pairs.end(), {c.i, c.j});
-      contacts_.normal_force.insert(contacts_.normal_force.end(), c.normal_force.data(),
-                                    c.normal_force.data() + D);
-      contacts_.tangential_force.insert(contacts_.tangential_force.end(), c.tangential_force.data(),
-                                        c.tangential_force.data() + D);
-      contacts_.overlap.push_back(c.overlap);
+      rows.pairs.insert(rows.pairs.end(), {c.i, c.j});
+      rows.normal_force.insert(rows.normal_force.end(), c.normal_force.data(),
+                               c.normal_force.data() + D);
+      rows.tangential_force.insert(rows.tangential_force.end(), c.tangential_force.data(),
+                                   c.tangential_force.data() + D);
+      rows.overlap.push_back(c.overlap);
     }
+    file_.write_contacts(rows);
   }
-
-  const detail::H5mdFile::ContactRows& contact_rows() const { return contacts_; }
 
  private:
   detail::H5mdFile& file_;
   detail::H5mdFile::Content content_;
-  detail::H5mdFile::GrainRows& rows_;  // one stretch's
-  detail::H5mdFile::ContactRows contacts_;
+  detail::H5mdFile::GrainRows& rows_;       // one stretch's
+  detail::H5mdFile::ContactRows contacts_;  // one piece's
 };
 
 }  // namespace
@@ -843,7 +872,7 @@ std::size_t H5mdWriter<D>::write_frame(std::int64_t step, double time,
     file_->drop_frame();
     throw;
   }
-  return file_->end_frame(step, time, sink.contact_rows());
+  return file_->end_frame(step, time);
 }
 
 template <int D>

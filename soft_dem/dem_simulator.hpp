@@ -138,9 +138,18 @@ class DemSimulator final : public Simulator<D> {
   // holds the grains (by the cell of the last rebuild, then id): on every rank, or only on rank
   // 0 (empty elsewhere) for what only the run's output reads.
   // for_each_in_whole_order hands them to visit(value) one by one, with no list of them built.
+  // Only the grains whose cells lie in [cells_from, cells_to) when those are given.
   enum class Joined : std::uint8_t { kOnEveryRank, kOnRank0 };
   template <class Value, class Of, class Visit>
-  void for_each_in_whole_order(Of&& value_of, Visit&& visit, Joined where) const;
+  void for_each_in_whole_order(Of&& value_of, Visit&& visit, Joined where,
+                               std::uint64_t cells_from = 0,
+                               std::uint64_t cells_to = UINT64_MAX) const;
+  // The same on rank 0 for what only the run's output reads, in stretches of the cells that
+  // hold at most `limit` values over all ranks (or a single cell): visit(value) for each value
+  // of a stretch, then stretch_done() on every rank. Rank 0 holds one stretch at a time.
+  template <class Value, class Of, class Visit, class Done>
+  void for_each_stretch_in_whole_order(Of&& value_of, Visit&& visit, Done&& stretch_done,
+                                       std::size_t limit) const;
   template <class Value, class Of>
   std::vector<Value> in_whole_order(Of&& value_of, Joined where = Joined::kOnEveryRank) const {
     std::vector<Value> out;
@@ -167,9 +176,15 @@ class DemSimulator final : public Simulator<D> {
                                     const SampleRegion* region) const;
   void sample_forces_over_ranks(ForceSample<D>& out) const;
   std::vector<Vec<D>> force_totals_here() const;
+  // join(value_of) for the contacts' rows (value_of(i, emit): grain i's contacts as rows of
+  // numbers), the pairs' and then the plate's: each joins them over the ranks its own way.
+  template <class Join>
+  void join_contacts(Join&& join) const;
   void contacts_on_rank0(std::vector<typename ForceSample<D>::Contact>& out) const;
-  // A frame's grains over ranks, one block of ids at a time.
+  // A frame's grains over ranks, one block of ids at a time, and its contacts one stretch of
+  // cells at a time.
   void frame_grains(const FrameAsk& ask, FrameSink<D>& sink) const;
+  void frame_contacts(const FrameAsk& ask, FrameSink<D>& sink) const;
   bool over_ranks() const { return domain_.has_value(); }
   void check_finite() const;
   void check_energy() const;

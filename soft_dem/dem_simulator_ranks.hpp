@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -325,7 +326,9 @@ void DemSimulator<D, Law, kMono, Space>::raise_together(
 template <int D, class Law, bool kMono, class Space>
 template <class Value, class Of, class Visit>
 void DemSimulator<D, Law, kMono, Space>::for_each_in_whole_order(Of&& value_of, Visit&& visit,
-                                                                 Joined where) const {
+                                                                 Joined where,
+                                                                 std::uint64_t cells_from,
+                                                                 std::uint64_t cells_to) const {
   struct Keyed {
     std::uint64_t cell;
     GrainId id;
@@ -337,7 +340,7 @@ void DemSimulator<D, Law, kMono, Space>::for_each_in_whole_order(Of&& value_of, 
   static thread_local std::vector<Keyed> mine, all;
   mine.clear();
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    if (!owned_[i]) continue;
+    if (!owned_[i] || whole_cell_[i] < cells_from || whole_cell_[i] >= cells_to) continue;
     std::uint32_t nth = 0;
     value_of(i, [&](const Value& v) { mine.push_back({whole_cell_[i], p_.id()[i], nth++, v}); });
   }
@@ -352,6 +355,57 @@ void DemSimulator<D, Law, kMono, Space>::for_each_in_whole_order(Of&& value_of, 
                 std::tie(all[b].cell, all[b].id, all[b].nth);
        }))
     visit(all[k].value);
+}
+
+// The stretches are found by counting: each rank counts its values in 4,096 equal runs of the
+// cells, the counts are summed over the ranks, and runs follow each other into a stretch while
+// the stretch holds no more than `limit`; a run that alone holds more is counted again in
+// finer runs, down to a single cell. A count and a gather per stretch: a few collectives.
+template <int D, class Law, bool kMono, class Space>
+template <class Value, class Of, class Visit, class Done>
+void DemSimulator<D, Law, kMono, Space>::for_each_stretch_in_whole_order(Of&& value_of,
+                                                                         Visit&& visit,
+                                                                         Done&& stretch_done,
+                                                                         std::size_t limit) const {
+  constexpr std::uint64_t kRuns = 4096;
+  const RankTeam& team = domain_->team();
+  std::vector<std::int64_t> values(p_.size(), 0);  // per own grain
+  std::vector<double> cells{0.0};                  // exact: cells are far fewer than 2^53
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!owned_[i]) continue;
+    value_of(i, [&](const Value&) { ++values[i]; });
+    cells[0] = std::max(cells[0], static_cast<double>(whole_cell_[i] + 1));
+  }
+  team.max(cells);
+  const auto limit_values = static_cast<std::int64_t>(std::max<std::size_t>(limit, 1));
+  const auto stretch = [&](std::uint64_t from, std::uint64_t to) {
+    for_each_in_whole_order<Value>(value_of, visit, Joined::kOnRank0, from, to);
+    stretch_done();
+  };
+  // Run k of [from, to) covers [from + ceil(k w / runs), from + ceil((k + 1) w / runs)).
+  const std::function<void(std::uint64_t, std::uint64_t)> cover = [&](std::uint64_t from,
+                                                                      std::uint64_t to) {
+    const std::uint64_t width = to - from, runs = std::min(kRuns, width);
+    const auto run_start = [&](std::uint64_t k) { return from + (k * width + runs - 1) / runs; };
+    std::vector<std::int64_t> count(runs, 0);
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      if (values[i] > 0 && whole_cell_[i] >= from && whole_cell_[i] < to)
+        count[(whole_cell_[i] - from) * runs / width] += values[i];
+    team.sum(count);
+    for (std::uint64_t k = 0; k < runs;) {
+      if (count[k] > limit_values && run_start(k + 1) - run_start(k) > 1) {
+        cover(run_start(k), run_start(k + 1));
+        ++k;
+        continue;
+      }
+      std::uint64_t end = k + 1;
+      std::int64_t held = count[k];
+      while (end < runs && held + count[end] <= limit_values) held += count[end++];
+      if (held > 0) stretch(run_start(k), run_start(end));
+      k = end;
+    }
+  };
+  if (cells[0] > 0.0) cover(0, static_cast<std::uint64_t>(cells[0]));
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -479,46 +533,77 @@ std::vector<Vec<D>> DemSimulator<D, Law, kMono, Space>::force_totals_here() cons
   return total;
 }
 
-// The contacts of all ranks on rank 0, in the order of one rank.
+// A contact as a row of numbers: i, j, the overlap, the normal and tangential forces.
+template <int D>
+using ContactRow = Row<3 + 2 * D>;
+template <int D>
+typename ForceSample<D>::Contact contact_of_row(const ContactRow<D>& r) {
+  constexpr int N = 3 + 2 * D;
+  return {static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 3),
+          get_row<D, N>(r, 3 + D), r[2]};
+}
+
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::contacts_on_rank0(
-    std::vector<typename ForceSample<D>::Contact>& out) const {
+template <class Join>
+void DemSimulator<D, Law, kMono, Space>::join_contacts(Join&& join) const {
   constexpr int N = 3 + 2 * D;
   const auto id = p_.id();
   const auto split = [&](GrainId i, GrainId j, const ContactGeometry<D>& g, const Vec<D>& f) {
     // A law that turns no grain has no tangential force: projecting would only add rounding.
     const Vec<D> normal = kRotation ? Vec<D>(f.dot(g.n) * g.n) : f;
-    Row<N> row{static_cast<double>(i), static_cast<double>(j), g.overlap};
+    ContactRow<D> row{static_cast<double>(i), static_cast<double>(j), g.overlap};
     put_row<D, N>(row, 3, normal);
     put_row<D, N>(row, 3 + D, f - normal);
     return row;
   };
-  const auto take = [&](const Row<N>& r) {
-    out.push_back({static_cast<GrainId>(r[0]), static_cast<GrainId>(r[1]), get_row<D, N>(r, 3),
-                   get_row<D, N>(r, 3 + D), r[2]});
-  };
-  for_each_in_whole_order<Row<N>>(
-      [&](std::size_t i, auto emit) {
-        for_each_contact_of(
-            i,
-            [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-              Vec<D> shear = pass_.history().of(k);
-              emit(split(id[i], id[j], g, law_.force(g, v_rel, shear)));
-            },
-            [](std::uint32_t) {});
-      },
-      take, Joined::kOnRank0);
-  if (plate_)
-    for_each_in_whole_order<Row<N>>(
-        [&](std::size_t i, auto emit) {
-          plate_->contact(
-              p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
-              [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-                emit(split(id[i], kPlateId, g, plate_->force(i, g, v_rel)));
-              },
-              [] {});
+  join([&](std::size_t i, auto emit) {
+    for_each_contact_of(
+        i,
+        [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          Vec<D> shear = pass_.history().of(k);
+          emit(split(id[i], id[j], g, law_.force(g, v_rel, shear)));
         },
-        take, Joined::kOnRank0);
+        [](std::uint32_t) {});
+  });
+  if (!plate_) return;
+  join([&](std::size_t i, auto emit) {
+    plate_->contact(
+        p_.position()[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+        [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+          emit(split(id[i], kPlateId, g, plate_->force(i, g, v_rel)));
+        },
+        [] {});
+  });
+}
+
+// The contacts of all ranks on rank 0, in the order of one rank.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::contacts_on_rank0(
+    std::vector<typename ForceSample<D>::Contact>& out) const {
+  join_contacts([&](auto&& value_of) {
+    for_each_in_whole_order<ContactRow<D>>(
+        value_of, [&](const ContactRow<D>& r) { out.push_back(contact_of_row<D>(r)); },
+        Joined::kOnRank0);
+  });
+}
+
+// A frame's contacts come to rank 0 in stretches of about as many as a block of grains, each
+// handed on as one piece, in the order of one rank.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::frame_contacts(const FrameAsk& ask,
+                                                        FrameSink<D>& sink) const {
+  static thread_local std::vector<typename ForceSample<D>::Contact> piece;  // memory kept
+  piece.clear();
+  const bool writer = domain_->team().rank() == 0;
+  join_contacts([&](auto&& value_of) {
+    for_each_stretch_in_whole_order<ContactRow<D>>(
+        value_of, [&](const ContactRow<D>& r) { piece.push_back(contact_of_row<D>(r)); },
+        [&] {
+          if (writer) sink.contacts(piece);
+          piece.clear();
+        },
+        ask.block_rows);
+  });
 }
 
 template <int D, class Law, bool kMono, class Space>
@@ -549,10 +634,7 @@ template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::frame(const FrameAsk& ask, FrameSink<D>& sink) const {
   if (!over_ranks()) return Simulator<D>::frame(ask, sink);
   frame_grains(ask, sink);
-  if (!ask.contacts) return;
-  std::vector<typename ForceSample<D>::Contact> contacts;
-  contacts_on_rank0(contacts);
-  if (domain_->team().rank() == 0) sink.contacts(contacts);
+  if (ask.contacts) frame_contacts(ask, sink);
 }
 
 template <int D, class Law, bool kMono, class Space>

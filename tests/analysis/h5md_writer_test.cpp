@@ -423,12 +423,14 @@ TEST_F(H5mdWriterTest, GrainIdsBeyondTheRowsAreRefusedAndLeaveNoFrame) {
 }
 
 // A simulator that hands the frames of kFrames, with forces and contacts, in stretches of
-// ask.block_rows ids, each stretch's grains last first; a stretch of ids at or past
-// `fail_from` fails.
+// ask.block_rows ids, each stretch's grains last first, and the contacts in pieces of a quarter
+// as many (the plate's among them); a stretch of ids at or past `fail_from` fails, and with
+// `fail_in_contacts` the frame fails after its first piece of contacts.
 class StretchedFrames final : public Simulator<3> {
  public:
-  explicit StretchedFrames(std::size_t frame, GrainId fail_from = kRows)
-      : frame_(frame), fail_from_(fail_from) {}
+  explicit StretchedFrames(std::size_t frame, GrainId fail_from = kRows,
+                           bool fail_in_contacts = false)
+      : frame_(frame), fail_from_(fail_from), fail_in_contacts_(fail_in_contacts) {}
 
   static ForceSample<3> forces(std::size_t frame) {
     ForceSample<3> f;
@@ -457,7 +459,13 @@ class StretchedFrames final : public Simulator<3> {
       for (std::uint32_t k : in) force.push_back(f.total[k]);
       sink.grains(low, end, stretch, ask.force ? force : std::vector<Vec<3>>());
     }
-    if (ask.contacts) sink.contacts(f.contacts);
+    if (!ask.contacts) return;
+    const std::span<const ForceSample<3>::Contact> contacts(f.contacts);
+    const std::size_t piece = std::max<std::size_t>(ask.block_rows / 4, 1);
+    for (std::size_t first = 0; first < contacts.size(); first += piece) {
+      sink.contacts(contacts.subspan(first, std::min(piece, contacts.size() - first)));
+      if (fail_in_contacts_) throw std::runtime_error("this frame's contacts fail");
+    }
   }
 
   std::string_view backend() const override { return "stretched frames"; }
@@ -473,6 +481,7 @@ class StretchedFrames final : public Simulator<3> {
  private:
   std::size_t frame_;
   GrainId fail_from_;
+  bool fail_in_contacts_;
 };
 
 TEST_F(H5mdWriterTest, AFrameTakenInStretchesOfIdsIsTheFrameWrittenWhole) {
@@ -484,7 +493,8 @@ TEST_F(H5mdWriterTest, AFrameTakenInStretchesOfIdsIsTheFrameWrittenWhole) {
     for (std::size_t k = 0; k < kFrames.size(); ++k) {
       const ForceSample<3> f = StretchedFrames::forces(k);
       a.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k, grains_of<3>(k), &f);
-      // 41 rows in stretches of 8, 32 and 128 (one stretch for all)
+      // 41 rows in stretches of 8, 32 and 128 (one stretch for all); the 5, 4 and 3 contacts
+      // in pieces of 2, 8 and 32
       const std::size_t grains = b.write_frame(100 * static_cast<std::int64_t>(k), 0.5 * k,
                                                StretchedFrames(k), std::size_t{8} << (k * 2));
       EXPECT_EQ(grains, kFrames[k].size());
@@ -520,6 +530,29 @@ TEST_F(H5mdWriterTest, AFrameThatFailsHalfWayLeavesNoneOfItsRows) {
   expect_frames_read_back<3>(file, 2);
   EXPECT_EQ(dataset_bytes(file, "/particles/all/position/value").size(),
             2 * kRows * 3 * sizeof(double));
+}
+
+// The contacts of a frame that fails between its pieces go with it, and so does the room it
+// made for them: the file is the one written without that frame.
+TEST_F(H5mdWriterTest, AFrameThatFailsBetweenItsContactsLeavesNoneOfThem) {
+  RunMetadata meta = metadata(3);
+  meta.contacts = true;
+  const fs::path failed = dir_ / "failed.h5", clean = dir_ / "clean.h5";
+  {
+    H5mdWriter<3> a(failed, meta, kRows), b(clean, meta, kRows);
+    a.write_frame(0, 0.0, StretchedFrames(2), 128);  // 3 contacts, 2 pairs
+    b.write_frame(0, 0.0, StretchedFrames(2), 128);
+    // 5 contacts in pieces of 4: the first widens the file to 4 pairs before the frame fails
+    EXPECT_THROW(a.write_frame(100, 0.5, StretchedFrames(0, kRows, true), 16), std::runtime_error);
+    a.finish();
+    b.finish();
+  }
+  EXPECT_EQ(read_summary(failed).frames, 1u);
+  for (const char* set : {"/connectivity/contacts/value", "/contacts/normal_force/value",
+                          "/contacts/tangential_force/value", "/contacts/overlap/value"}) {
+    EXPECT_FALSE(dataset_bytes(clean, set).empty()) << set;
+    EXPECT_EQ(dataset_bytes(failed, set), dataset_bytes(clean, set)) << set;
+  }
 }
 
 TEST_F(H5mdWriterTest, MissingDirectoryThrowsNamingThePath) {
