@@ -19,6 +19,12 @@ int launched_ranks() {
   return 1;
 }
 
+int launched_rank() {
+  for (const char* name : kLaunchedRankVariables)
+    if (const char* v = std::getenv(name)) return std::max(0, std::atoi(v));
+  return 0;
+}
+
 namespace {
 
 void check_received(int rank, std::size_t got, std::size_t expected) {

@@ -23,6 +23,10 @@ namespace granjet {
 inline constexpr std::array<const char*, 2> kLaunchedRanksVariables = {"OMPI_COMM_WORLD_SIZE",
                                                                        "PMI_SIZE"};
 int launched_ranks();
+// This process's rank among them, from the same launchers' variables; 0 when not started by one.
+inline constexpr std::array<const char*, 2> kLaunchedRankVariables = {"OMPI_COMM_WORLD_RANK",
+                                                                      "PMI_RANK"};
+int launched_rank();
 
 class RankTeam {
  public:

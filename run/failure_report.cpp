@@ -13,6 +13,8 @@ namespace granjet {
 int report_current_exception(std::ostream& err) {
   try {
     throw;
+  } catch (const RefusedElsewhere& e) {
+    return e.code;
   } catch (const InputError& e) {
     err << "granjet: " << e.what() << "\n";
     return 2;

@@ -14,6 +14,12 @@ namespace granjet {
 // code.
 int report_current_exception(std::ostream& err);
 
+// An error that every rank mpirun started met alike and that rank 0 names: this rank ends with
+// the same exit code and says nothing (report_current_exception returns `code`).
+struct RefusedElsewhere {
+  int code;
+};
+
 // Runs `check`, the reading and checking of a command's inputs, on every rank that mpirun
 // started, and lets no rank go on until all have passed it: some checks run on rank 0 alone
 // (the outputs it will write), and a rank that fails alone would leave the others waiting for

@@ -385,6 +385,8 @@ const std::vector<std::string> kResumableKeys = {"run.t_end", "run.threads",
 void refuse_several_ranks(const std::string& command, const std::string& backend) {
   const int ranks = launched_ranks();
   if (ranks <= 1 || backend != "event_driven") return;
+  // Every rank refuses alike before MPI starts, with nothing to agree on: rank 0 names it.
+  if (launched_rank() != 0) throw RefusedElsewhere(2);
   throw InputError("mpirun -n " + std::to_string(ranks),
                    "granjet " + command +
                        " runs as one process: the event-driven backend handles the collisions "

@@ -53,16 +53,27 @@ TEST_F(BadInput, OneRunStartedOnSeveralMpiRanksIsRefused) {
   const fs::path copy = dir_ / "binary.ini";
   fs::copy_file(scene("binary.ini"), copy);
   const std::string out = " --out " + (dir_ / "a.h5").string();
-  struct Launched {  // the launcher's variable, for this scope
-    Launched() { ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1); }
-    ~Launched() { ::unsetenv("OMPI_COMM_WORLD_SIZE"); }
+  struct Launched {  // the launcher's variables, for this scope
+    explicit Launched(const char* rank) {
+      ::setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+      ::setenv("OMPI_COMM_WORLD_RANK", rank, 1);
+    }
+    ~Launched() {
+      ::unsetenv("OMPI_COMM_WORLD_SIZE");
+      ::unsetenv("OMPI_COMM_WORLD_RANK");
+    }
   };
   {
-    const Launched launched;
+    const Launched launched("0");
     expect_refused("run " + copy.string() + " --backend event_driven" + out,
                    "the event-driven backend handles the collisions one at a time");
     expect_refused("compare " + copy.string() + " --out " + (dir_ / "both").string(),
                    "granjet compare runs as one process: the event-driven backend");
+  }
+  {  // the other ranks end alike and leave the naming to rank 0: one message in all
+    const Launched launched("1");
+    expect_refused("run " + copy.string() + " --backend event_driven" + out, "");
+    EXPECT_EQ(err_, "");
   }
   EXPECT_EQ(granjet("run " + copy.string() + out + " --quiet"), 0) << err_;  // one rank runs
 }
