@@ -360,7 +360,7 @@ void DemSimulator<D, Law, kMono, Space>::for_each_in_whole_order(Of&& value_of, 
 // The stretches are found by counting: each rank counts its values in 4,096 equal runs of the
 // cells, the counts are summed over the ranks, and runs follow each other into a stretch while
 // the stretch holds no more than `limit`; a run that alone holds more is counted again in
-// finer runs, down to a single cell. A count and a gather per stretch: a few collectives.
+// finer runs, down to a single cell. An all-reduce per counting and a gather per stretch.
 template <int D, class Law, bool kMono, class Space>
 template <class Value, class Of, class Visit, class Done>
 void DemSimulator<D, Law, kMono, Space>::for_each_stretch_in_whole_order(Of&& value_of,
