@@ -37,8 +37,12 @@ TEST(IdIndex, FindsEveryHeldIdAndNoOther) {
     std::mt19937_64 random(11);
     for (int k = 0; k < 50'000; ++k) {
       const GrainId probe = static_cast<GrainId>(random() % 4'000'000'000'000ull);
-      if (!held.count(probe)) ASSERT_EQ(index[probe], IdIndex::kAbsent) << probe;
-      if (!held.count(probe + 1)) ASSERT_EQ(index[probe + 1], IdIndex::kAbsent) << probe + 1;
+      if (!held.count(probe)) {
+        ASSERT_EQ(index[probe], IdIndex::kAbsent) << probe;
+      }
+      if (!held.count(probe + 1)) {
+        ASSERT_EQ(index[probe + 1], IdIndex::kAbsent) << probe + 1;
+      }
     }
   }
 }

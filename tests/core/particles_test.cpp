@@ -46,7 +46,9 @@ TEST(Particles, CompactionKeepsExactlyTheKeptGrainsAndMovesOnlyThoseBeyondThem) 
       }
       // The grains kept in place did not move.
       for (std::uint32_t i : keep)
-        if (i < keep.size()) EXPECT_EQ(p.id()[i], static_cast<GrainId>(i));
+        if (i < keep.size()) {
+          EXPECT_EQ(p.id()[i], static_cast<GrainId>(i));
+        }
     }
   }
 }
