@@ -7,6 +7,15 @@
 // what the exchange costs the late rank.
 //
 //   mpirun -n 2 --bind-to core build/bench/granjet_rank_exchange_bench
+//   mpirun -n 1 build/bench/granjet_rank_exchange_bench --benchmark_filter=LockStep  (reference)
+//
+// BM_LockStep is the ceiling of any decomposition that meets at every step: each rank does the
+// same work and then joins a one-word all-reduce, as a step's agreement. On quiet cores the ranks
+// arrive together and `busy` (each rank's share of the wall time spent on its work, the mean
+// over ranks) stays near 1; a host whose cores stall now and then makes every rank wait for the
+// one that stalled. K ranks then run at most K x busy x (step_us with `mpirun -n 1` over
+// step_us with K) times as fast as one: the last factor is what the ranks cost each other in
+// shared caches and memory.
 //
 // Each benchmark runs a fixed number of iterations, the same on every rank (Google Benchmark
 // would otherwise choose a count per rank, and the ranks would wait for one another for ever);
@@ -48,7 +57,14 @@ void come_late(int iteration, const RankTeam& world, std::int64_t micros) {
   }
 }
 
+bool has_partners(benchmark::State& state) {
+  if (!RankTeam::world().alone()) return true;
+  state.SkipWithError("an exchange needs 2 ranks or more");
+  return false;
+}
+
 void BM_RankTeamExchange(benchmark::State& state) {
+  if (!has_partners(state)) return;
   Lists lists(static_cast<std::size_t>(state.range(0)));
   MPI_Barrier(MPI_COMM_WORLD);
   int iteration = 0;
@@ -60,6 +76,7 @@ void BM_RankTeamExchange(benchmark::State& state) {
 }
 
 void BM_OneMessageEachWay(benchmark::State& state) {
+  if (!has_partners(state)) return;
   Lists lists(static_cast<std::size_t>(state.range(0)));
   const int count = static_cast<int>(state.range(0));
   std::vector<MPI_Request> requests(2 * lists.others.size());
@@ -77,6 +94,42 @@ void BM_OneMessageEachWay(benchmark::State& state) {
   state.SetBytesProcessed(state.iterations() * state.range(0) * std::ssize(lists.others));
 }
 
+// Each rank's work per step: a dependent chain of `chain` multiply-adds, then a sum over its own
+// array of `kib` KiB (0: none), which at a few MiB lives in the cache the cores share.
+void BM_LockStep(benchmark::State& state) {
+  const RankTeam world = RankTeam::world();
+  const std::int64_t chain = state.range(0);
+  const std::vector<std::uint64_t> data(static_cast<std::size_t>(state.range(1)) * 128, 1);
+  double x = 1.0, busy = 0.0;
+  std::vector<double> agreed(1);
+  world.any(true);  // the ranks start together (alone, too: `mpirun -n 1` is the reference)
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    const auto begin = std::chrono::steady_clock::now();
+    for (std::int64_t k = 0; k < chain; ++k) x = x * 0.999999 + 1e-7;
+    std::uint64_t sum = 0;
+    for (std::uint64_t value : data) sum += value;
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(sum);
+    busy += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    agreed[0] = x;
+    world.max(agreed);
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double shares = 0.0;
+  for (double share : world.all_gather<double>(std::vector<double>{busy / wall})) shares += share;
+  state.counters["busy"] = shares / world.size();
+  state.counters["step_us"] = 1e6 * busy / static_cast<double>(state.iterations());
+}
+
+BENCHMARK(BM_LockStep)
+    ->Args({1 << 14, 0})
+    ->Args({1 << 16, 0})
+    ->Args({1 << 18, 0})
+    ->Args({0, 4096})
+    ->Args({0, 16384})
+    ->Iterations(kIterations / 4);
 BENCHMARK(BM_RankTeamExchange)
     ->ArgsProduct({{2048, 8192, 15000, 32768, 65536, 131072}, {0, 20}})
     ->Iterations(kIterations);
