@@ -1,6 +1,7 @@
 #include "analysis/inline_analysis.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/field_writer.hpp"
@@ -33,9 +34,17 @@ void InlineAnalysis<D>::observe(Simulator<D>& sim) {
   const bool counted = analysis_.in_window(sim.time());
   sim.record_transfers(counted);
   transfers_.clear();
-  const SampleRegion region = analysis_.sample_region(sim.time());
+  SampleRegion region = analysis_.sample_region(sim.time());
+  // A grain first found scattered now was within region.beyond at the last sample, which looked
+  // at every grain beyond it, and has moved no farther than the travel since: the grains beyond
+  // that were all counted then, and need not come to rank 0 again. The first sample of a run,
+  // or after a resume, looks at them all.
+  const double travel = sim.travel();
+  if (std::isfinite(travel - travel_at_sample_))
+    region.until = region.beyond + (travel - travel_at_sample_);
   if (counted) sim.collect_transfers_in(transfers_, region);
   analysis_.sample(sim.time(), sim.particles_in(region), transfers_);
+  travel_at_sample_ = travel;
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <limits>
 #include <vector>
 
 #include "analysis/run_analysis.hpp"
@@ -42,6 +43,8 @@ class InlineAnalysis final : public VisitingObserver<D, InlineAnalysis<D>> {
   RunAnalysis<D> analysis_;
   double half_step_;  // the least the run advances between two looks
   std::vector<PairImpulse<D>> transfers_;
+  // Simulator::travel at the last sample (NaN: none since the start or the resume).
+  double travel_at_sample_ = std::numeric_limits<double>::quiet_NaN();
   double seconds_ = 0.0;
 };
 

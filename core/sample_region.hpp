@@ -1,6 +1,7 @@
 // What one look at a run needs of it (an analysis sample), so that a run over MPI ranks gathers
 // only that to rank 0 (Simulator::particles_in, collect_transfers_in): the grains farther than
-// `beyond` from the jet axis (the scattered ones), every wall grain, and the grains and
+// `beyond` from the jet axis (the scattered ones; no farther than `until`, where farther ones
+// were all seen at an earlier look), every wall grain, and the grains and
 // momentum transfers that reach into the cylinder (3D; 2D the strip) of radius `within` about
 // the jet axis between `low` and `high` along it (the measuring bins). A grain reaches into it
 // by its radius, a transfer by the segment between its two positions. The tests are loosened
@@ -19,6 +20,7 @@ namespace granjet {
 
 struct SampleRegion {
   double beyond = std::numeric_limits<double>::infinity();
+  double until = std::numeric_limits<double>::infinity();
   double within = -1.0;  // negative: no cylinder
   double low = 0.0, high = 0.0;
 
@@ -26,7 +28,8 @@ struct SampleRegion {
   bool holds_grain(const Vec<D>& x, double radius, GrainKind kind) const {
     const double across = distance_from_axis<D>(x);
     // A NaN position fails every comparison and is held.
-    return kind == GrainKind::kWall || !(across <= beyond * (1.0 - kLoose)) ||
+    return kind == GrainKind::kWall ||
+           (!(across <= beyond * (1.0 - kLoose)) && !(across > until * (1.0 + kLoose))) ||
            reaches(across, x[kJetAxis<D>], radius);
   }
   // The transfer between a and b (the partner's image), by its end a.

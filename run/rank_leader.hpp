@@ -101,6 +101,8 @@ class RankLeader final : public Simulator<D> {
     call(RankOrder::kParticlesIn, 0.0, region);
     return sim_->particles_in(region);
   }
+  // Alike on every rank: each sums the speeds the ranks agreed on.
+  double travel() const override { return sim_->travel(); }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override {
     call(RankOrder::kTransfers);
     sim_->collect_transfers(out);

@@ -55,6 +55,7 @@ class DemSimulator final : public Simulator<D> {
   const Particles<D>& particles() const override;
   std::size_t grain_count() const override;
   const Particles<D>& particles_in(const SampleRegion& region) const override;
+  double travel() const override { return travelled_ + travel_; }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) override;
   SimStats stats() const override;
@@ -239,7 +240,8 @@ class DemSimulator final : public Simulator<D> {
 
   std::int64_t step_ = 0;
   std::int64_t free_grains_ = 0;
-  double travel_ = 0.0;  // bound on any grain's displacement since the last rebuild
+  double travel_ = 0.0;     // bound on any grain's displacement since the last rebuild
+  double travelled_ = 0.0;  // travel_ summed over the lists before this one
   bool needs_rebuild_ = false;
   bool first_step_ = true;
   double removed_energy_ = 0.0;

@@ -659,6 +659,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
       },
       pairs_, threads_);
   quiet_.expire();
+  travelled_ += travel_;
   travel_ = 0.0;
   needs_rebuild_ = false;
   std::int64_t free = 0;

@@ -1,6 +1,6 @@
-// What an analysis sample asks of a run (core/sample_region.hpp): the scattered grains, the wall
-// grains, and the grains and transfers that reach into the cylinder about the jet axis (3D z,
-// 2D x), by their radius or their segment's length.
+// What an analysis sample asks of a run (core/sample_region.hpp): the scattered grains (up to a
+// distance, when given), the wall grains, and the grains and transfers that reach into the
+// cylinder about the jet axis (3D z, 2D x), by their radius or their segment's length.
 #include "core/sample_region.hpp"
 
 #include <gtest/gtest.h>
@@ -42,6 +42,23 @@ TEST(SampleRegion, HoldsScatteredWallAndNaNGrainsAnywhere) {
   EXPECT_FALSE(scattered.holds_grain<3>({0.0, 0.0, 3.0}, 0.5, GrainKind::kFree));
   EXPECT_TRUE(scattered.holds_grain<3>({0.0, 0.0, 3.0}, 0.5, GrainKind::kWall));
   EXPECT_TRUE(scattered.holds_grain<3>({0.0, 20.5, 3.0}, 0.5, GrainKind::kFree));
+}
+
+// A look that has seen every grain beyond 20 up to an earlier time asks only for the shell its
+// grains can have crossed since (up to `until`); wall grains and the cylinder stay held.
+TEST(SampleRegion, HoldsScatteredGrainsOnlyUpToUntil) {
+  SampleRegion c = cylinder();
+  c.until = 21.0;
+  const auto held = [&](Vec<3> x, GrainKind kind = GrainKind::kFree) {
+    return c.holds_grain<3>(x, 0.5, kind);
+  };
+  EXPECT_TRUE(held({0.0, 20.5, 40.0}));
+  EXPECT_TRUE(held({0.0, 21.0, 40.0}));  // on the edge: the looker's own test decides
+  EXPECT_FALSE(held({0.0, 21.5, 40.0}));
+  EXPECT_FALSE(held({0.0, 19.5, 40.0}));
+  EXPECT_TRUE(held({0.0, 30.0, 40.0}, GrainKind::kWall));
+  EXPECT_TRUE(held({kNaN, 0.0, 40.0}));
+  EXPECT_TRUE(held({0.0, 0.0, 3.0}));  // in the cylinder
 }
 
 // In 2D the jet axis is x, the "cylinder" the strip |y| <= within.
