@@ -123,7 +123,8 @@ class Simulator {
   }
   // A bound on how far any grain has moved since this simulator was made (or restored), the
   // sum of each step's time times its largest speed: between two reads it bounds every grain's
-  // displacement. Infinity where the backend keeps none.
+  // displacement (in a periodic box, up to the wraps by whole box lengths). Infinity where the
+  // backend keeps none.
   virtual double travel() const { return std::numeric_limits<double>::infinity(); }
   // Appends the momentum transfers since the last call (soft DEM: the current pair forces
   // times the time since the last call, a sampled estimate; event-driven: every impulse).
