@@ -34,6 +34,7 @@
 #include "run/scene_kinds.hpp"
 #include "run/version.hpp"
 #include "soft_dem/dem_simulator.hpp"
+#include "soft_dem/scene_support.hpp"
 
 namespace granjet {
 namespace {
@@ -320,6 +321,25 @@ template RunOutcome run_simulation<3>(Simulator<3>&, const Scene&, const SceneSu
 
 namespace {
 
+// A rank other than 0 of a run spread over ranks: builds its share of the grains and makes
+// each call rank 0 makes. An error here would end every rank (MpiSession) before rank 0 could
+// name it, so this rank names it.
+template <int D>
+void follow(const Scene& resolved, const RunOptions& options, const RankTeam& ranks,
+            const StateArchive* resume_from) {
+  try {
+    const std::unique_ptr<Simulator<D>> sim = dem::make_dem_simulator<D>(resolved, ranks);
+    if (options.profile) sim->profile().enable();  // rank 0 shows the spread over ranks
+    // An interrupt is rank 0's to handle: it stops every rank at the same step.
+    std::signal(SIGINT, SIG_IGN);
+    std::signal(SIGTERM, SIG_IGN);
+    follow_leader(*sim, ranks, resume_from);
+  } catch (const std::exception& e) {
+    std::cerr << "granjet: rank " << ranks.rank() << ": " << e.what() << "\n";
+    throw;
+  }
+}
+
 // One run of the scene as the backend resolves it, into `out_file`. Started as several MPI
 // ranks, the soft DEM spreads it over them: rank 0 runs and writes it, the others follow.
 template <int D>
@@ -333,18 +353,21 @@ int run_scene(const Scene& requested, const RunOptions& options,
     return run_simulation<D>(*sim, requested, support, options, out_file, out, resume_from)
         .exit_code;
   }
-  std::unique_ptr<Simulator<D>> sim = dem::make_dem_simulator<D>(support.resolved, ranks);
   if (ranks.rank() != 0) {
-    if (options.profile) sim->profile().enable();  // rank 0 shows the spread over ranks
-    // An interrupt is rank 0's to handle: it stops every rank at the same step.
-    std::signal(SIGINT, SIG_IGN);
-    std::signal(SIGTERM, SIG_IGN);
-    follow_leader(*sim, ranks, resume_from);
+    follow<D>(support.resolved, options, ranks, resume_from);
     return 0;
   }
-  RankLeader<D> leader(std::move(sim), ranks);
+  RankLeader<D> leader(dem::make_dem_simulator<D>(support.resolved, ranks), ranks);
   return run_simulation<D>(leader, requested, support, options, out_file, out, resume_from)
       .exit_code;
+}
+
+// What every rank checks of the scene before a run or a resume starts: that the backend runs it,
+// on as many ranks as mpirun started, within this machine's memory.
+void check_scene_runs(const std::string& backend, const Scene& scene) {
+  const Scene resolved = check_backend(backend, scene).resolved;
+  dem::check_over_ranks(resolved, launched_ranks());
+  check_run_budget(resolved, backend, physical_memory_bytes());
 }
 
 }  // namespace
@@ -433,8 +456,7 @@ int resume_command(const ResumeOptions& options, std::ostream& out) {
           throw InputError("run.t_end", std::to_string(scene.run.t_end) +
                                             " lies before the checkpoint at t = " +
                                             std::to_string(stored.checkpoint_time));
-        check_run_budget(check_backend(stored.backend, scene).resolved, stored.backend,
-                         physical_memory_bytes());
+        check_scene_runs(stored.backend, scene);
         run.backend = stored.backend;
         run.summary = options.summary;
         run.quiet = options.quiet;
@@ -471,8 +493,7 @@ int run_command(const RunOptions& options, std::ostream& out) {
                            "runs its seeds one after another on one process; spread seeds "
                            "over ranks with mpirun -n K granjet campaign");
         scene = load_scene(options.scene_file, options.overrides);
-        check_run_budget(check_backend(options.backend, scene).resolved, options.backend,
-                         physical_memory_bytes());
+        check_scene_runs(options.backend, scene);
         std::vector<OutputPath> outputs = run_outputs(out_file, options.summary);
         for (const std::uint64_t seed : options.seeds)
           for (OutputPath& o :

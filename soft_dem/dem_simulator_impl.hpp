@@ -22,6 +22,7 @@
 #include "soft_dem/dem_simulator.hpp"
 #include "soft_dem/dem_simulator_ranks.hpp"
 #include "soft_dem/jet_cuts.hpp"
+#include "soft_dem/scene_support.hpp"
 
 namespace granjet::dem {
 
@@ -65,10 +66,7 @@ DemSimulator<D, Law, kMono, Space>::DemSimulator(const Scene& scene, Particles<D
   id_limit_ = max_id + 1;
   index_of_id_.assign(p_.id());
   if (!ranks.alone()) {
-    if constexpr (Space::kPeriodic)
-      throw InputError("mpirun -n " + std::to_string(ranks.size()),
-                       "a periodic box runs on one rank: the domain decomposition cuts open "
-                       "space (run it without mpirun; run.threads = N shares one machine)");
+    check_over_ranks(scene, ranks.size());
     double max_radius = 0.0;
     for (double r : p_.radius()) max_radius = std::max(max_radius, r);
     max_radius = over_all_ranks(ranks, max_radius, &RankTeam::max);  // of all ranks' shares

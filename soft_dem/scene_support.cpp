@@ -2,7 +2,9 @@
 
 #include <iomanip>
 #include <sstream>
+#include <string>
 
+#include "core/errors.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
 namespace granjet::dem {
@@ -31,6 +33,13 @@ SceneSupport scene_support(const Scene& scene) {
     support.notes.push_back(note.str());
   }
   return support;
+}
+
+void check_over_ranks(const Scene& scene, int ranks) {
+  if (ranks > 1 && scene.periodic())
+    throw InputError("mpirun -n " + std::to_string(ranks),
+                     "a periodic box runs on one rank: the domain decomposition cuts open "
+                     "space (run it without mpirun; run.threads = N shares one machine)");
 }
 
 }  // namespace granjet::dem

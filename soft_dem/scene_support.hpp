@@ -11,4 +11,8 @@ namespace granjet::dem {
 
 SceneSupport scene_support(const Scene& scene);
 
+// Throws InputError unless the soft DEM can spread `scene` over `ranks` MPI ranks (more than
+// one): the domain decomposition cuts open space, so a periodic box (the gases) runs on one.
+void check_over_ranks(const Scene& scene, int ranks);
+
 }  // namespace granjet::dem

@@ -59,9 +59,10 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
 
 // Bad input over ranks ends every rank with the error named once and the bad-input exit code:
 // an unknown key, found on every rank, an output directory that does not exist, which only
-// rank 0 checks (the others used to wait for it forever), and the event-driven backend, which
-// every rank refuses before MPI starts. No rank aborts the others before the message is out,
-// and nothing is written.
+// rank 0 checks (the others used to wait for it forever), the event-driven backend, which
+// every rank refuses before MPI starts, and a periodic box on the soft DEM (the ranks used to
+// abort each other at the simulator's start, and no rank named it). No rank aborts the others
+// before the message is out, and nothing is written.
 TEST_F(RunOverRanks, BadInputEndsEveryRankWithOneMessage) {
   const std::string run = "run " + scene("jet3d.ini") + " --quiet --no-log";
   const fs::path out = dir_ / "bad.h5";
@@ -69,11 +70,15 @@ TEST_F(RunOverRanks, BadInputEndsEveryRankWithOneMessage) {
     std::string args, message;
   };
   for (const Case& c :
-       {Case{" --set run.no_such_key=1 --out " + out.string(), "run.no_such_key: unknown key"},
-        Case{" --out " + (dir_ / "missing" / "bad.h5").string(), "no directory"},
-        Case{" --backend event_driven --out " + out.string(),
-             "the event-driven backend handles the collisions"}}) {
-    EXPECT_EQ(granjet_over_ranks(2, run + c.args), 2) << err_;
+       {Case{run + " --set run.no_such_key=1 --out " + out.string(),
+             "run.no_such_key: unknown key"},
+        Case{run + " --out " + (dir_ / "missing" / "bad.h5").string(), "no directory"},
+        Case{run + " --backend event_driven --out " + out.string(),
+             "the event-driven backend handles the collisions"},
+        Case{"run " + scene("gas3d.ini") + " --backend soft_dem --quiet --no-log --out " +
+                 out.string(),
+             "mpirun -n 2: a periodic box runs on one rank"}}) {
+    EXPECT_EQ(granjet_over_ranks(2, c.args), 2) << err_;
     EXPECT_EQ(occurrences(err_, c.message), 1u) << err_;
     EXPECT_EQ(err_.find("MPI_ABORT"), std::string::npos) << err_;
   }
