@@ -172,6 +172,9 @@ int analyze(const std::vector<std::string>& args) {
   desc.add_options()("file", po::value<std::string>()->required())(
       "window", po::value<std::string>())("summary", po::value<std::string>());
   const po::variables_map vm = parse(args, desc, "file");
+  granjet::refuse_over_ranks("analyze",
+                             "it reads a run's frames and writes their fields into the run's "
+                             "file, which one process writes. Run it without mpirun");
   o.file = vm["file"].as<std::string>();
   if (vm.count("summary")) o.summary = vm["summary"].as<std::string>();
   if (vm.count("window")) {
@@ -226,6 +229,9 @@ int info(const std::vector<std::string>& args) {
   desc.add_options()("file", po::value<std::string>()->required())("scene",
                                                                    po::bool_switch(&scene_only));
   const po::variables_map vm = parse(args, desc, "file");
+  granjet::refuse_over_ranks("info",
+                             "it reads a run's file and prints what it holds. Run it "
+                             "without mpirun");
   return granjet::info_command({vm["file"].as<std::string>(), scene_only}, std::cout);
 }
 

@@ -405,19 +405,23 @@ int run_ensemble(const Scene& scene, const RunOptions& options,
 const std::vector<std::string> kResumableKeys = {"run.t_end", "run.threads",
                                                  "run.progress_interval"};
 
-void refuse_several_ranks(const std::string& command, const std::string& backend) {
+void refuse_over_ranks(const std::string& command, const std::string& why) {
   const int ranks = launched_ranks();
-  if (ranks <= 1 || backend != "event_driven") return;
+  if (ranks <= 1) return;
   // Every rank refuses alike before MPI starts, with nothing to agree on: rank 0 names it.
   if (launched_rank() != 0) throw RefusedElsewhere(2);
   throw InputError("mpirun -n " + std::to_string(ranks),
-                   "granjet " + command +
-                       " runs as one process: the event-driven backend handles the collisions "
-                       "one at a time in one global order of time, which ranks could share only "
-                       "through a parallel event calendar (docs/event_driven.md). Run it without "
-                       "mpirun (run.threads = N shares one machine's cores), spread a soft-DEM "
-                       "run with mpirun -n K granjet run, or many runs with mpirun -n K granjet "
-                       "campaign");
+                   "granjet " + command + " runs as one process: " + why);
+}
+
+void refuse_several_ranks(const std::string& command, const std::string& backend) {
+  if (backend != "event_driven") return;
+  refuse_over_ranks(command,
+                    "the event-driven backend handles the collisions one at a time in one global "
+                    "order of time, which ranks could share only through a parallel event "
+                    "calendar (docs/event_driven.md). Run it without mpirun (run.threads = N "
+                    "shares one machine's cores), spread a soft-DEM run with mpirun -n K granjet "
+                    "run, or many runs with mpirun -n K granjet campaign");
 }
 
 int resume_command(const ResumeOptions& options, std::ostream& out) {

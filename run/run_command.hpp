@@ -39,10 +39,13 @@ struct RunOptions {
   std::vector<std::uint64_t> seeds;
 };
 
+// Started by mpirun -n K with K > 1, `command`, which runs as one process for the reason `why`,
+// refuses before it reads or writes anything: rank 0 names it (InputError), the other ranks end
+// with its exit code in silence (RefusedElsewhere).
+void refuse_over_ranks(const std::string& command, const std::string& why);
+
 // Started by mpirun -n K with K > 1, a soft-DEM run or resume spreads over the ranks
-// (run/rank_leader.hpp); `command` on the event-driven backend refuses before it writes
-// anything: rank 0 names why (InputError), the other ranks end with its exit code in silence
-// (RefusedElsewhere).
+// (run/rank_leader.hpp); `command` on the event-driven backend refuses, as above.
 void refuse_several_ranks(const std::string& command, const std::string& backend);
 
 // Returns the process exit code: 0 done, 3 blow-up (the output kept as .partial). Throws

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -62,6 +63,11 @@ class CommandTest : public ::testing::Test {
     return run_reading(cmd, said);
   }
 #endif
+  // A file's bytes: to see that a refused command left it as it was.
+  static std::string bytes_of(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
   static std::string scene(const std::string& name) {
     return std::string(GRANJET_SCENES_DIR) + "/" + name;
   }

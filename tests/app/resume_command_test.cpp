@@ -84,11 +84,6 @@ class Resume : public testing::CommandTest {
            (dir_ / (name + ".json")).string();
   }
 
-  static std::string bytes_of(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-  }
-
   static nlohmann::json without_timings(nlohmann::json j) {
     for (const char* key : {"wall_seconds", "cpu_seconds", "particle_steps_per_second",
                             "collisions_per_second", "output", "ranks"})

@@ -1,6 +1,7 @@
 // `mpirun -n 2 granjet run` writes the file one process writes, dataset for dataset (h5diff):
 // frames with forces and contacts, energies, inline analysis and a checkpoint, from a jet with
 // friction on the tethered target. Its `--profile` gives each phase's spread over the ranks.
+// Bad input, and the commands that run as one process, end every rank with one message.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -84,6 +85,31 @@ TEST_F(RunOverRanks, BadInputEndsEveryRankWithOneMessage) {
   }
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(dir_ / "bad.h5.partial"));
+}
+
+// The commands that read a finished run, info and analyze, run as one process: over ranks they
+// used to run once on each rank, info printing everything K times and analyze racing itself for
+// the file. Now every rank refuses before it reads the file: the reason once, the bad-input exit
+// code, the file as it was and nothing written beside it.
+TEST_F(RunOverRanks, CommandsOfOneProcessRefuseSeveralRanks) {
+  const fs::path run = dir_ / "jet.h5";
+  ASSERT_EQ(granjet("run " + scene("jet2d.ini") + " --set run.t_end=2 --quiet --no-log --out " +
+                    run.string()),
+            0)
+      << err_;
+  const std::string before = bytes_of(run);
+  const std::size_t files = std::distance(fs::directory_iterator(dir_), fs::directory_iterator());
+  for (const std::string command : {"info", "analyze"}) {
+    EXPECT_EQ(granjet_over_ranks(2, command + " " + run.string()), 2) << err_;
+    EXPECT_EQ(occurrences(err_, "mpirun -n 2: granjet " + command + " runs as one process"), 1u)
+        << err_;
+    EXPECT_EQ(err_.find("MPI_ABORT"), std::string::npos) << err_;
+    EXPECT_EQ(err_.find("status:"), std::string::npos) << "info printed: " << err_;
+  }
+  EXPECT_EQ(bytes_of(run), before);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()),
+            static_cast<std::ptrdiff_t>(files + 1))  // and mpiexec's own output
+      << "analyze wrote beside the run";
 }
 #endif
 
