@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "../common/raw_state.hpp"
 #include "analysis/checkpoint_file.hpp"
 #include "core/archive_shares.hpp"
 #include "core/jet_geometry.hpp"
@@ -36,15 +37,7 @@ namespace {
 template <int D>
 std::vector<double> raw_state(const Particles<D>& p) {
   std::vector<double> out;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    out.push_back(static_cast<double>(p.id()[i]));
-    for (int d = 0; d < D; ++d) out.insert(out.end(), {p.position()[i][d], p.velocity()[i][d]});
-    const auto w = p.spin()[i];
-    if constexpr (D == 2)
-      out.push_back(w);
-    else
-      out.insert(out.end(), w.data(), w.data() + 3);
-  }
+  for (std::size_t i = 0; i < p.size(); ++i) testing::append_raw_state(out, p, i);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/raw_state.hpp"
 #include "run/scene_file.hpp"
 #include "soft_dem/dem_simulator.hpp"
 
@@ -21,15 +22,7 @@ std::vector<double> state_by_id(const Simulator<D>& sim) {
   std::vector<std::size_t> index(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) index[i] = i;
   std::sort(index.begin(), index.end(), [&](auto a, auto b) { return p.id()[a] < p.id()[b]; });
-  for (std::size_t i : index) {
-    out.push_back(static_cast<double>(p.id()[i]));
-    for (int d = 0; d < D; ++d) out.insert(out.end(), {p.position()[i][d], p.velocity()[i][d]});
-    const auto w = p.spin()[i];
-    if constexpr (D == 2)
-      out.push_back(w);
-    else
-      out.insert(out.end(), w.data(), w.data() + 3);
-  }
+  for (std::size_t i : index) testing::append_raw_state(out, p, i);
   return out;
 }
 
