@@ -2,7 +2,8 @@
 // (core/recursive_bisection.hpp): per K the load imbalance, each rank's ghosts (the grains of
 // other ranks within the neighbour cut, 2 r_max + skin, of its region) and the bytes one step's
 // halo exchange would send (each ghost's position, velocity and spin as doubles). Each grain
-// weighs 1 + its listed pairs (its share of the distance tests), as measured work would. The
+// weighs 1 + its listed pairs (its share of the distance tests), as measured work would; and
+// how many of each rank's ghosts touch another grain (the rest fly free at that instant). The
 // geometry of a decomposition, for docs/performance.md; no rank runs anything.
 // The cut's skin is the run's run.skin (from the scene the file keeps), and a jet's column is
 // cut lengthwise as a run cuts it (soft_dem/jet_cuts.hpp); the frame, the last.
@@ -50,25 +51,37 @@ int estimate(const std::string& file, std::size_t frame, const granjet::Scene& s
       weight[i] += 1.0;
       weight[pairs.partner[k]] += 1.0;
     }
+  // Grains that touch another (the listed pairs that overlap): those a step pushes. A ghost
+  // that touches nothing flies free, so its state after a step could be known without its owner.
+  std::vector<std::uint8_t> touching(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t k = pairs.first[i]; k < pairs.first[i + 1]; ++k) {
+      const std::uint32_t j = pairs.partner[k];
+      if ((x[i] - x[j]).norm() < radius[i] + radius[j]) touching[i] = touching[j] = 1;
+    }
   constexpr int kGhostDoubles = D == 3 ? 9 : 5;  // x, v, w
   std::printf("%s, frame %zu (t = %g): %zu grains, %zu listed pairs, cut %g\n", file.c_str(), frame,
               f.time, n, pairs.size(), cut);
-  std::printf("%6s %10s %12s %12s %12s %10s %16s\n", "ranks", "imbalance", "grains/rank",
-              "ghosts mean", "ghosts max", "ghost/own", "halo bytes/step");
+  std::printf("%6s %10s %12s %12s %12s %10s %16s %16s\n", "ranks", "imbalance", "grains/rank",
+              "ghosts mean", "ghosts max", "ghost/own", "halo bytes/step", "touching mean");
   for (int k : parts) {
     const granjet::RecursiveBisection<D> rcb(x, weight, k, granjet::dem::jet_cuts<D>(scene, cut));
     std::vector<std::size_t> owned(k, 0), ghosts(k, 0);
+    std::size_t touching_ghosts = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const int own = rcb.part()[i];
       ++owned[own];
-      rcb.for_each_part_near(x[i], cut, [&](int part) { ghosts[part] += part != own; });
+      rcb.for_each_part_near(x[i], cut, [&](int part) {
+        ghosts[part] += part != own;
+        touching_ghosts += part != own && touching[i];
+      });
     }
     std::size_t total = 0, most = 0;
     for (std::size_t g : ghosts) total += g, most = std::max(most, g);
-    std::printf("%6d %10.3f %12.0f %12.0f %12zu %10.3f %16zu\n", k,
+    std::printf("%6d %10.3f %12.0f %12.0f %12zu %10.3f %16zu %16.0f\n", k,
                 granjet::imbalance(rcb.part(), weight, k), static_cast<double>(n) / k,
                 static_cast<double>(total) / k, most, static_cast<double>(total) / n,
-                total * kGhostDoubles * sizeof(double));
+                total * kGhostDoubles * sizeof(double), static_cast<double>(touching_ghosts) / k);
   }
   return 0;
 }
