@@ -78,6 +78,19 @@ void for_each_piece(std::size_t bytes, int rank, Visit&& visit) {
   visit(Piece{offset, bytes - offset, rank});
 }
 
+constexpr int kDataTag = 12;  // the exchanges' messages
+
+// Posts each partner's message, cut as for_each_piece cuts it.
+void send_pieces(std::span<const std::span<const std::byte>> to, std::span<const int> partners,
+                 std::vector<MPI_Request>& requests) {
+  for (int r : partners)
+    for_each_piece(to[r].size(), r, [&](const Piece& p) {
+      requests.emplace_back();
+      MPI_Isend(to[r].data() + p.offset, count_of(p.bytes), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
+                &requests.back());
+    });
+}
+
 std::vector<int> offsets_of(const std::vector<int>& counts, std::size_t& total) {
   std::vector<int> offsets(counts.size(), 0);
   total = 0;
@@ -182,25 +195,20 @@ void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
     for (int r : partners) copy_to(from(r, to[r].size()), to[r], sizes_known);
     return;
   }
-  constexpr int kSizeTag = 11, kDataTag = 12;  // the tags keep the two rounds apart
-  std::vector<std::uint64_t> incoming(size_, 0), outgoing(size_, 0);
+  if (sizes_known)
+    exchange_known(to, partners, from);
+  else
+    exchange_probed(to, partners, from);
+}
+
+void RankTeam::exchange_known(std::span<const std::span<const std::byte>> to,
+                              std::span<const int> partners, const RoomOf& from) const {
   std::vector<MPI_Request> requests;
   requests.reserve(2 * partners.size());
-  if (!sizes_known) {
-    for (int r : partners) {
-      outgoing[r] = to[r].size();
-      requests.emplace_back();
-      MPI_Irecv(&incoming[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
-      requests.emplace_back();
-      MPI_Isend(&outgoing[r], 1, MPI_UINT64_T, r, kSizeTag, MPI_COMM_WORLD, &requests.back());
-    }
-    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-    requests.clear();
-  }
   std::vector<std::span<std::byte>> inbox(size_);
   std::vector<Piece> pieces;  // the receives, in the order they are posted
   for (int r : partners) {
-    inbox[r] = from(r, incoming[r]);
+    inbox[r] = from(r, 0);
     for_each_piece(inbox[r].size(), r, [&](const Piece& p) {
       pieces.push_back(p);
       requests.emplace_back();
@@ -209,12 +217,7 @@ void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
     });
   }
   const std::size_t receives = requests.size();
-  for (int r : partners)
-    for_each_piece(to[r].size(), r, [&](const Piece& p) {
-      requests.emplace_back();
-      MPI_Isend(to[r].data() + p.offset, count_of(p.bytes), MPI_BYTE, r, kDataTag, MPI_COMM_WORLD,
-                &requests.back());
-    });
+  send_pieces(to, partners, requests);
   // One piece at a time, so that a sender that cut its message otherwise (another length) is
   // caught at the first piece that differs rather than waited for: a longer piece is MPI's
   // truncation error, a shorter one is caught here.
@@ -238,6 +241,40 @@ void RankTeam::exchange_bytes(std::span<const std::span<const std::byte>> to,
   }
   MPI_Waitall(static_cast<int>(requests.size() - receives), requests.data() + receives,
               MPI_STATUSES_IGNORE);
+}
+
+// A message of unknown length is read as it comes: each piece is matched (MPI_Mprobe) in the
+// order sent until the one that ends it, shorter than a full piece (a whole message is longer
+// than any piece), and only then received, into room for them all. No round of lengths first:
+// the ghost states of a step change length from step to step, and that round would add a
+// latency to every step.
+void RankTeam::exchange_probed(std::span<const std::span<const std::byte>> to,
+                               std::span<const int> partners, const RoomOf& from) const {
+  std::vector<MPI_Request> requests;
+  requests.reserve(partners.size());
+  send_pieces(to, partners, requests);
+  std::vector<MPI_Message> matched;
+  std::vector<int> counts;
+  for (int r : partners) {
+    matched.clear();
+    counts.clear();
+    std::size_t bytes = 0;
+    do {
+      MPI_Status status;
+      matched.emplace_back();
+      MPI_Mprobe(r, kDataTag, MPI_COMM_WORLD, &matched.back(), &status);
+      counts.emplace_back();
+      MPI_Get_count(&status, MPI_BYTE, &counts.back());
+      bytes += static_cast<std::size_t>(counts.back());
+    } while (static_cast<std::size_t>(counts.back()) == kPiece);
+    const std::span<std::byte> inbox = from(r, bytes);
+    std::size_t offset = 0;
+    for (std::size_t k = 0; k < matched.size(); ++k) {
+      MPI_Mrecv(inbox.data() + offset, counts[k], MPI_BYTE, &matched[k], MPI_STATUS_IGNORE);
+      offset += static_cast<std::size_t>(counts[k]);
+    }
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 
 MpiSession::MpiSession() {

@@ -91,8 +91,8 @@ class RankTeam {
   // (both of size() lists). The same relation seen from both sides: only those ranks take
   // part, and none at all for no partners. The lists are the caller's, kept from call to call
   // so that their memory is reused. With `sizes_known`, each from[r] already has the length
-  // that r sends (another length is an error, raised on the receiving rank); otherwise a round
-  // of sizes comes first.
+  // that r sends (another length is an error, raised on the receiving rank); otherwise each
+  // from[r] takes the length of what arrives.
   template <class T>
   void exchange_into(const std::vector<std::vector<T>>& to, std::vector<std::vector<T>>& from,
                      std::span<const int> partners, bool sizes_known) const {
@@ -137,6 +137,10 @@ class RankTeam {
   void broadcast_bytes(std::span<std::byte> root_bytes, const Room& bytes) const;
   void exchange_bytes(std::span<const std::span<const std::byte>> to, std::span<const int> partners,
                       bool sizes_known, const RoomOf& from) const;
+  void exchange_known(std::span<const std::span<const std::byte>> to, std::span<const int> partners,
+                      const RoomOf& from) const;
+  void exchange_probed(std::span<const std::span<const std::byte>> to,
+                       std::span<const int> partners, const RoomOf& from) const;
 
   int rank_ = 0;
   int size_ = 1;

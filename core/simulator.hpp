@@ -77,10 +77,14 @@ struct SimStats {
   std::int64_t collisions = 0;
   std::int64_t cell_crossings = 0;
   // One run over MPI ranks (soft_dem/work_balance.hpp): how many, the busiest rank's work over
-  // the ranks' mean, and how often the parts were cut anew. Not kept in checkpoints.
+  // the ranks' mean, and how often the parts were cut anew; the ghost states all ranks sent a
+  // step (soft_dem/domain.hpp), and what share of the ghosts they held those were. Counted
+  // since this process started; not kept in checkpoints.
   int ranks = 1;
   double imbalance = 1.0;
   std::int64_t recuts = 0;
+  double ghost_states_per_step = 0.0;
+  double ghost_states_share = 0.0;
 };
 
 inline void put_stats(StateArchive& a, const std::string& name, const SimStats& s) {

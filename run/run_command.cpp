@@ -59,7 +59,11 @@ nlohmann::json summary_json(const Scene& scene, const Backend& backend, const Si
   j["contacts"] = s.contacts;
   j["neighbour_rebuilds"] = s.neighbour_rebuilds;
   if (s.ranks > 1)
-    j["ranks"] = {{"count", s.ranks}, {"imbalance", s.imbalance}, {"recuts", s.recuts}};
+    j["ranks"] = {{"count", s.ranks},
+                  {"imbalance", s.imbalance},
+                  {"recuts", s.recuts},
+                  {"ghost_states_per_step", s.ghost_states_per_step},
+                  {"ghost_states_share", s.ghost_states_share}};
   j["wall_seconds"] = wall_seconds;
   j["cpu_seconds"] = cpu_seconds;  // of all threads: the rates below are per wall-second
   j["particle_steps"] = s.particle_steps;
@@ -92,7 +96,9 @@ std::string timing_text(const nlohmann::json& summary, const SimStats& s, bool e
            << " particle-steps/s\n";
   if (s.ranks > 1)
     timing << "over " << s.ranks << " ranks: imbalance " << s.imbalance
-           << " (the busiest rank's work over the mean), parts cut anew " << s.recuts << " times\n";
+           << " (the busiest rank's work over the mean), parts cut anew " << s.recuts
+           << " times; ghost states sent " << s.ghost_states_per_step << " a step, "
+           << 100.0 * s.ghost_states_share << "% of the ghosts held (the others coasted)\n";
   if (summary.contains("measured")) {
     timing << "measured";
     for (const auto& [key, value] : summary["measured"].items())

@@ -223,7 +223,7 @@ class DemSimulator final : public Simulator<D> {
   std::vector<Spin<D>> torque_, torque_prev_;
   std::vector<double> inv_inertia_;
   // Per grain, bit 0: it had a force at this pass, bit 1: at the last one (see
-  // ForcePass::pass); kGhostBit marks a ghost.
+  // ForcePass::pass).
   std::vector<std::uint8_t> forced_;
   static constexpr std::uint32_t kRemoved = IdIndex::kAbsent;
   // The grains held here (kRemoved for the others, and once removed), assigned anew after
@@ -259,8 +259,6 @@ class DemSimulator final : public Simulator<D> {
   bool pass_pending_ = false;         // a pass ran since the last agree()
   bool contacts_pending_ = false;     // a pass ran whose contacts stats_ does not count yet
   bool stop_agreed_ = false;          // some rank was asked to stop
-  // forced_'s bit for a ghost: always pushed, so that no coasting loop counts its speed.
-  static constexpr std::uint8_t kGhostBit = 4;
   WorkBalance balance_;
   double tether_seconds_ = 0.0;  // the tethers' part of the passes since the last look
   mutable Particles<D> whole_;   // particles() over ranks: all grains on rank 0, none elsewhere

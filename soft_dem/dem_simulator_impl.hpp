@@ -213,7 +213,7 @@ void DemSimulator<D, Law, kMono, Space>::step() {
     };
     if (!over_ranks()) {
       add_travel(force_pass([&](std::size_t i) { return ab2.advance(i); }, coast));
-    } else {  // a ghost's move is its owner's, sent after the pass (ghosts never coast: kGhostBit)
+    } else {  // a pushed ghost's move is its owner's, sent after the pass (update_ghosts)
       const std::uint8_t* owned = owned_.data();
       double own = 0.0;
       // A classification comes after a rebuild or a trusted pair's push, not at every step: the
@@ -637,11 +637,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
       grid_, p_.position(), p_.radius(), scene_.run.skin,
       [c = pair_class.data()](std::uint32_t i, std::uint32_t j) { return (c[i] & c[j]) != 0; },
       pairs_, space_, threads_);
-  if (over_ranks()) {
-    for (std::int64_t i = 0; i < n; ++i)
-      if (!owned_[i]) forced_[i] |= kGhostBit;
-    domain_->list_halo(p_.position(), p_.id(), owned_);
-  }
+  if (over_ranks()) domain_->list_halo(p_.position(), p_.id(), owned_);
   timing.emplace(&this->profile(), phase_.rebuild_rows);
   pair_row_.resize(pairs_.size());
 #pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1)
@@ -896,6 +892,13 @@ SimStats DemSimulator<D, Law, kMono, Space>::stats() const {
   s.ranks = domain_->ranks();
   s.imbalance = balance_.imbalance();
   s.recuts = balance_.recuts();
+  const typename Domain<D>::HaloCount& halo = domain_->halo_count();
+  std::vector<std::int64_t> rows{halo.rows_sent, halo.rows_held};
+  domain_->team().sum(rows);
+  if (halo.exchanges > 0)
+    s.ghost_states_per_step = static_cast<double>(rows[0]) / static_cast<double>(halo.exchanges);
+  if (rows[1] > 0)
+    s.ghost_states_share = static_cast<double>(rows[0]) / static_cast<double>(rows[1]);
   return s;
 }
 

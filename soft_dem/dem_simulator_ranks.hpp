@@ -239,17 +239,20 @@ auto DemSimulator<D, Law, kMono, Space>::whole_frame(double cut) const ->
   return CellGrid<D>::frame_of(lo, hi, cut, static_cast<std::size_t>(grains));
 }
 
-// A ghost's state as its owner sends it each step: x, v, w, the forced bits and F(t - dt)
-// (QuietPairs' coasting test reads it), and for velocity Verlet also M(t - dt), which its
-// predictor needs (Adams-Bashforth-2 integrates no ghost: the owner's state overwrites what
-// the pass made of it).
+// A ghost's state as its owner sends it after a step that pushed it: x, v, w, the forced bits
+// and F(t - dt) (QuietPairs' coasting test reads it), and for velocity Verlet also M(t - dt),
+// which its predictor needs; the pass here left it alone (Adams-Bashforth-2) or corrected it
+// with only this rank's share of its forces (Verlet). A ghost that its owner did not push
+// coasted here as there, bit for bit, from the same state with no force: its owner sends
+// nothing. Where it is pushed here, a contact with a grain owned here, the plate or a tether,
+// its owner pushed it too: the owner holds that grain as a ghost and lists their pair.
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::update_ghosts() {
   const PhaseProfile::Timer timing = timer(phase_.ghosts);
   constexpr std::size_t S = kSpinWidth<D>, kForced = 3 * D + S, kTorque = kForced + 1;
   const bool torque = scene_.run.integrator == IntegratorKind::kVelocityVerlet;
   domain_->update_ghosts(
-      kTorque + (torque ? S : 0),
+      kTorque + (torque ? S : 0), [&](std::uint32_t i) { return pass_.pushed()[i] != 0; },
       [&](std::uint32_t i, double* row) {
         put<D>(row, p_.position()[i]);
         put<D>(row + D, p_.velocity()[i]);
@@ -263,7 +266,7 @@ void DemSimulator<D, Law, kMono, Space>::update_ghosts() {
         p_.velocity()[i] = get<D, Vec<D>>(row + D);
         force_prev_[i] = get<D, Vec<D>>(row + 2 * D);
         p_.spin()[i] = get<D, Spin<D>>(row + 3 * D);
-        forced_[i] = static_cast<std::uint8_t>(row[kForced]) | kGhostBit;
+        forced_[i] = static_cast<std::uint8_t>(row[kForced]);
         if (torque) torque_prev_[i] = get<D, Spin<D>>(row + kTorque);
       });
 }

@@ -4,7 +4,8 @@
 // R_max + skin, or a tether bond) of its part; with run.lengthwise_cuts = auto a jet's column
 // is cut lengthwise in the first levels (soft_dem/jet_cuts.hpp). At every neighbour rebuild
 // the grains move to their owners and the ghosts are chosen anew; at every step each owner
-// sends its ghosts' state. The parts are cut anew, weighted by measured work, when the ranks'
+// sends the state of each of its ghosts that a force moved (the holders coast the others, as
+// the owner does, bit for bit). The parts are cut anew, weighted by measured work, when the ranks'
 // busy times grow uneven. No rank ever holds the whole run: each builds only its share of the
 // initial grains (core/initial_state.hpp's GrainShare), the first cut bisects over the ranks,
 // and the first rebuild moves the grains to their owners.
@@ -147,21 +148,53 @@ class Domain {
     inbox_.assign(ranks(), {});
   }
 
-  // Every owner sends its ghosts' states, `width` doubles each (pack(i, row) writes grain i's,
-  // unpack(i, row) reads them), to the ranks that hold them. Collective.
-  template <class Pack, class Unpack>
-  void update_ghosts(std::size_t width, Pack&& pack, Unpack&& unpack) {
+  // Every owner sends the states of those of its ghosts that `moved(i)` says moved otherwise
+  // than by coasting, `width` doubles each (pack(i, row) writes grain i's, unpack(i, row) reads
+  // them), to the ranks that hold them; the receivers' own passes coasted the others as their
+  // owners did. Each row starts with the ghost's place in the list both sides hold. Collective.
+  template <class Moved, class Pack, class Unpack>
+  void update_ghosts(std::size_t width, Moved&& moved, Pack&& pack, Unpack&& unpack) {
+    const std::size_t stride = width + 1;
     for (int r : partners_) {
-      outbox_[r].resize(send_index_[r].size() * width);
-      for (std::size_t k = 0; k < send_index_[r].size(); ++k)
-        pack(send_index_[r][k], &outbox_[r][k * width]);
-      inbox_[r].resize(recv_index_[r].size() * width);
+      const std::vector<std::uint32_t>& listed = send_index_[r];
+      std::vector<double>& rows = outbox_[r];
+      rows.resize(listed.size() * stride);
+      std::size_t sent = 0;
+      for (std::size_t k = 0; k < listed.size(); ++k) {
+        if (!moved(listed[k])) continue;
+        double* row = &rows[sent++ * stride];
+        row[0] = static_cast<double>(k);  // exact: a list holds far fewer than 2^53 ghosts
+        pack(listed[k], row + 1);
+      }
+      rows.resize(sent * stride);
+      halo_.rows_sent += static_cast<std::int64_t>(sent);
+      halo_.rows_held += static_cast<std::int64_t>(listed.size());
     }
-    team_.exchange_into(outbox_, inbox_, partners_, true);
-    for (int r : partners_)
-      for (std::size_t k = 0; k < recv_index_[r].size(); ++k)
-        unpack(recv_index_[r][k], &inbox_[r][k * width]);
+    ++halo_.exchanges;
+    team_.exchange_into(outbox_, inbox_, partners_, false);
+    for (int r : partners_) {
+      const std::vector<std::uint32_t>& listed = recv_index_[r];
+      const std::vector<double>& rows = inbox_[r];
+      if (rows.size() % stride != 0)
+        throw std::logic_error("rank " + std::to_string(r) + " sent ghost states of " +
+                               std::to_string(rows.size()) + " doubles, not rows of " +
+                               std::to_string(stride));
+      for (std::size_t at = 0; at < rows.size(); at += stride) {
+        const double k = rows[at];
+        if (!(k >= 0.0 && k < static_cast<double>(listed.size())))
+          throw std::logic_error("rank " + std::to_string(r) + " sent the state of ghost " +
+                                 std::to_string(k) + " of the " + std::to_string(listed.size()) +
+                                 " it sends here");
+        unpack(listed[static_cast<std::size_t>(k)], &rows[at + 1]);
+      }
+    }
   }
+  // What this rank's ghost exchanges sent since it was built: how many, the rows sent, and the
+  // rows it would have sent had every ghost been pushed.
+  struct HaloCount {
+    std::int64_t exchanges = 0, rows_sent = 0, rows_held = 0;
+  };
+  const HaloCount& halo_count() const { return halo_; }
 
  private:
   RankTeam team_;
@@ -171,6 +204,7 @@ class Domain {
   std::vector<int> partners_;  // the ranks this one sends ghosts to or receives them from
   std::vector<std::vector<std::uint32_t>> send_index_, recv_index_;  // by rank, in id order
   std::vector<std::vector<double>> outbox_, inbox_;  // the states, kept for their memory
+  HaloCount halo_;
 };
 
 }  // namespace granjet::dem

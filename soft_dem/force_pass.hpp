@@ -89,6 +89,10 @@ class ForcePass {
   };
   LoopSeconds take_loop_seconds() { return std::exchange(loop_seconds_, {}); }
 
+  // Whether each grain was pushed at the last pass (a force at it or at the one before, or a
+  // tethered wall grain): the others coasted.
+  std::span<const std::uint8_t> pushed() const { return pushed_; }
+
   // The listed pairs in contact at the last evaluation and their history.
   History& history() { return history_; }
   const History& history() const { return history_; }

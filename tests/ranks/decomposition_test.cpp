@@ -211,6 +211,10 @@ void expect_ranks_give_one_rank_bits(const std::string& scene_file,
     EXPECT_EQ(a.contacts, b.contacts);
     EXPECT_EQ(a.neighbour_rebuilds, b.neighbour_rebuilds);
     EXPECT_EQ(a.removed, b.removed);
+    // The ghosts that no force pushed coasted on their holders: their owners sent no state.
+    EXPECT_GT(b.ghost_states_per_step, 0.0);
+    EXPECT_GT(b.ghost_states_share, 0.0);
+    EXPECT_LT(b.ghost_states_share, 1.0);
     expect_samples_of_one_rank<D>(*one, *spread);
     ContactPieces coarse, fine;
     expect_frame_of_one_rank<D>(*one, *spread, 97, coarse);

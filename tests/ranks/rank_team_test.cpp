@@ -1,7 +1,7 @@
 // The rank team's exchanges and gathers between the MPI ranks this test was started on (mpirun
 // -n K, K = 2..4; main is in decomposition_test.cpp). A message arrives whole at any length:
 // either side of the piece that short messages are cut into, and of the longest message cut,
-// whether the receiver knows its length or is sent it first. One of another length than the
+// whether the receiver knows its length or takes what comes. One of another length than the
 // receiver expects is an error at once, not a wait for pieces that never come.
 #include "core/rank_team.hpp"
 
@@ -47,6 +47,26 @@ TEST(RankTeam, ExchangedMessagesArriveWholeAtAnyLength) {
       EXPECT_EQ(known[r], message(r, me, bytes)) << bytes << " bytes from rank " << r;
       EXPECT_EQ(told[r], message(r, me, bytes)) << bytes << " bytes from rank " << r << ", sized";
     }
+  }
+}
+
+// Lengths unknown to the receiver differ from partner to partner and from call to call, as the
+// ghost states of a step do; each kept list takes this call's length, longer or shorter than
+// the last, across the piece and the longest message cut.
+TEST(RankTeam, UnknownLengthsDifferByPartnerAndCall) {
+  const RankTeam world = RankTeam::world();
+  const int me = world.rank();
+  const std::vector<int> others = all_but_me(world);
+  std::vector<std::vector<std::uint8_t>> to(world.size()), from(world.size());
+  const auto length = [](int call, int sender, int receiver) -> std::size_t {
+    return (std::size_t{37'123} * (call + 1) + 4'001 * sender + 977 * receiver) % 21'000;
+  };
+  for (int call = 0; call < 6; ++call) {
+    for (int r : others) to[r] = message(me, r, length(call, me, r));
+    world.exchange_into(to, from, others, false);
+    for (int r : others)
+      EXPECT_EQ(from[r], message(r, me, length(call, r, me)))
+          << "call " << call << ": " << length(call, r, me) << " bytes from rank " << r;
   }
 }
 
