@@ -150,8 +150,10 @@ class Domain {
 
   // Every owner sends the states of those of its ghosts that `moved(i)` says moved otherwise
   // than by coasting, `width` doubles each (pack(i, row) writes grain i's, unpack(i, row) reads
-  // them), to the ranks that hold them; the receivers' own passes coasted the others as their
-  // owners did. Each row starts with the ghost's place in the list both sides hold. Collective.
+  // them), to the ranks that hold them; the holders' own passes coasted the others as their
+  // owners did. Each row starts with the ghost's place in the list both sides hold. A ghost
+  // that moved otherwise here (`moved` on the holder) with no row from its owner is an error.
+  // Collective.
   template <class Moved, class Pack, class Unpack>
   void update_ghosts(std::size_t width, Moved&& moved, Pack&& pack, Unpack&& unpack) {
     const std::size_t stride = width + 1;
@@ -179,14 +181,28 @@ class Domain {
         throw std::logic_error("rank " + std::to_string(r) + " sent ghost states of " +
                                std::to_string(rows.size()) + " doubles, not rows of " +
                                std::to_string(stride));
+      // The ghosts between two rows coasted at their owner; one that moved otherwise here
+      // would part from its owner's state for good.
+      std::size_t next = 0;
+      const auto coasted_before = [&](std::size_t end) {
+        for (; next < end; ++next)
+          if (moved(listed[next]))
+            throw std::logic_error("ghost " + std::to_string(next) + " of the " +
+                                   std::to_string(listed.size()) + " from rank " +
+                                   std::to_string(r) +
+                                   " was pushed here, but its owner sent no state for it");
+      };
       for (std::size_t at = 0; at < rows.size(); at += stride) {
         const double k = rows[at];
-        if (!(k >= 0.0 && k < static_cast<double>(listed.size())))
+        if (!(k >= static_cast<double>(next) && k < static_cast<double>(listed.size())))
           throw std::logic_error("rank " + std::to_string(r) + " sent the state of ghost " +
                                  std::to_string(k) + " of the " + std::to_string(listed.size()) +
-                                 " it sends here");
-        unpack(listed[static_cast<std::size_t>(k)], &rows[at + 1]);
+                                 " it sends here, after ghost " + std::to_string(next));
+        coasted_before(static_cast<std::size_t>(k));
+        unpack(listed[next], &rows[at + 1]);
+        ++next;
       }
+      coasted_before(listed.size());
     }
   }
   // What this rank's ghost exchanges sent since it was built: how many, the rows sent, and the
