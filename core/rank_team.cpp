@@ -208,7 +208,7 @@ void RankTeam::exchange_known(std::span<const std::span<const std::byte>> to,
   std::vector<std::span<std::byte>> inbox(size_);
   std::vector<Piece> pieces;  // the receives, in the order they are posted
   for (int r : partners) {
-    inbox[r] = from(r, 0);
+    inbox[r] = from(r, 0);  // the list as the caller sized it: the length asked for is unused
     for_each_piece(inbox[r].size(), r, [&](const Piece& p) {
       pieces.push_back(p);
       requests.emplace_back();
