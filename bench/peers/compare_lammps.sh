@@ -6,6 +6,12 @@
 # Usage: bench/peers/compare_lammps.sh [PEERS_DIR]   (run from the repository root, after
 # scripts/setup.sh). Installs lammps if it is missing. Environment: GRANJET, the granjet binary
 # to measure (default build/app/granjet; e.g. one built for another -march).
+# With RANKS=K (K > 1; not under taskset, each rank needs its own core) it runs jet3d alone, on
+# one process and on K MPI ranks (mpirun --bind-to core) with each code, ROUNDS times (default
+# 3) in turn, and prints each round's particle-steps/s, the speed-ups of K ranks over one
+# process, and granjet over LAMMPS on K ranks. LAMMPS runs over the ranks twice: on its fixed
+# processor grid, and with its balancer moving the cut along the jet axis every 1,000 steps
+# (`-var balance 1000`, see jet3d.lmp).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 peers=$(cd "${1:-$root/bench/peers/lammps}" && pwd)
@@ -32,20 +38,45 @@ open("jet3d.data", "w").write("\n".join(lines))
 SPREAD
 )
 
+on_ranks=()  # how the next run starts: empty for one process, else an mpirun command line
+
 lammps_rate() {  # input, grains, extra -var args...
   local input=$1 grains=$2
   shift 2
-  (cd "$work" && lmp -in "$input" -log run.log -screen none -var model gh "$@")
+  (cd "$work" && "${on_ranks[@]}" lmp -in "$input" -log run.log -screen none -var model gh "$@")
   awk -v n="$grains" '/^Loop time of/ {printf "%.4g\n", n * $9 / $4}' "$work/run.log"
 }
 
 granjet_rate() {  # scene, --set args...
   local scene=$1
   shift
-  "$granjet" run "$root/scenes/$scene" --quiet --out "$work/g.h5" \
-    --summary "$work/g.json" --set run.t_end=40 --set wall.kind=fixed --set output.interval=0 "$@"
+  "${on_ranks[@]}" "$granjet" run "$root/scenes/$scene" --quiet --out "$work/g.h5" \
+    --summary "$work/g.json" --set run.t_end=40 --set wall.kind=fixed --set output.interval=0 "$@" \
+    2>"$work/g.err" || { cat "$work/g.err" >&2; exit 1; }  # quiet: t_end is before the window
   python3 -c "import json; print('%.4g' % json.load(open('$work/g.json'))['particle_steps_per_second'])"
 }
+
+ranks=${RANKS:-1}
+if [ "$ranks" -gt 1 ]; then
+  echo "CPU: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) logical cores;" \
+    "jet3d mu_p=0.2 on 1 process and on $ranks ranks, particle-steps/s"
+  printf "%-5s %10s %10s %8s %10s %10s %8s %10s %8s %14s\n" round "granjet 1" "granjet K" \
+    "speed-up" "LAMMPS 1" "LAMMPS K" "speed-up" "balanced" "speed-up" "granjet/LAMMPS"
+  for ((round = 1; round <= ${ROUNDS:-3}; ++round)); do
+    on_ranks=()
+    g1=$(granjet_rate jet3d.ini)
+    l1=$(lammps_rate jet3d.lmp 20000 -var skin 0.4)
+    on_ranks=(env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+      mpirun -n "$ranks" --bind-to core)
+    gk=$(granjet_rate jet3d.ini)
+    lk=$(lammps_rate jet3d.lmp 20000 -var skin 0.4)
+    lb=$(lammps_rate jet3d.lmp 20000 -var skin 0.4 -var balance 1000)
+    python3 -c "import sys; r, g1, gk, l1, lk, lb = sys.argv[1:]; g1, gk, l1, lk, lb = map(float, (g1, gk, l1, lk, lb))
+print('%-5s %10.4g %10.4g %8.2f %10.4g %10.4g %8.2f %10.4g %8.2f %14.2f' % (r, g1, gk, gk / g1, l1, lk, lk / l1, lb, lb / l1, gk / max(lk, lb)))" \
+      "$round" "$g1" "$gk" "$l1" "$lk" "$lb"
+  done
+  exit 0
+fi
 
 printf "%-22s %14s %14s %8s\n" "scene" "granjet" "LAMMPS gh" "ratio"
 row() {  # label, granjet rate, lammps rate
