@@ -78,25 +78,25 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
     }
     const double m = particles.mass()[i];
     coords_.for_each_share(x[i], particles.radius()[i],
-                           [&](int bin, double volume) { bins_[bin].volume += volume; });
+                           [&](int bin, double volume) { bins_[bin].volume.add(volume); });
     const double lateral = coords_.lateral(x[i]), h = coords_.height(x[i]);
     const int cell = grid.half_cell_at(lateral, h);
     if (cell < 0) continue;  // the half-cell mesh covers every bin
     const Vec<D> local = coords_.frame(x[i]) * v[i];
-    HalfCellSums<D>& c = half_cells_[cell];
-    c.mass += m;
-    c.momentum += m * local;
-    c.lateral += m * lateral;
-    c.height += m * h;
+    HalfCellExactSums& c = half_cells_[cell];
+    c.mass.add(m);
+    c.momentum.add(m * local);
+    c.lateral.add(m * lateral);
+    c.height.add(m * h);
     const int bin = grid.bin_at(lateral, h);
     if (bin < 0) continue;
     BinSums& s = bins_[bin];
-    s.count += 1.0;
-    s.mass += m;
-    s.momentum += m * local;
-    s.second += m * local * local.transpose();
-    s.momentum_xyz += m * v[i];
-    s.second_xyz += m * v[i] * v[i].transpose();
+    s.count.add(1.0);
+    s.mass.add(m);
+    s.momentum.add(m * local);
+    s.second.add(m * local * local.transpose());
+    s.momentum_xyz.add(m * v[i]);
+    s.second_xyz.add(m * v[i] * v[i].transpose());
     vdf_.add(bin, local);
   }
   // [C.31]-[C.33]: each transfer's J r^T, r = r_i - r_j, shared by the length fraction A of the
@@ -113,19 +113,30 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
       const Vec<D> mid = t.position_i + 0.5 * (s0 + s1) * (t.position_j - t.position_i);
       const auto frame = coords_.frame(mid);
       BinSums& b = bins_[bin];
-      b.contact += (s1 - s0) * frame * w * frame.transpose();
-      b.contact_xyz += (s1 - s0) * w;
-      // The same expression as the total's, so a bin of wall transfers only matches it exactly.
-      if (wall) b.contact_wall += (s1 - s0) * frame * w * frame.transpose();
+      // The wall part is the same term as the total's, so a bin of wall transfers only matches
+      // it exactly.
+      const Mat contact = (s1 - s0) * frame * w * frame.transpose();
+      b.contact.add(contact);
+      b.contact_xyz.add((s1 - s0) * w);
+      if (wall) b.contact_wall.add(contact);
       const Mat fabric = (s1 - s0) * frame * nn * frame.transpose();
-      b.fabric += fabric;
-      b.contact_normal += j_r * fabric;
-      b.segments += s1 - s0;
+      b.fabric.add(fabric);
+      b.contact_normal.add(j_r * fabric);
+      b.segments.add(s1 - s0);
     });
   }
   ++samples_;
   if (elapsed > 0.0) ++transfer_samples_;
   transfer_time_ += elapsed;
+}
+
+template <int D>
+auto FieldAccumulator<D>::values(const BinSums& s) -> BinValues {
+  return {s.count.value(),        s.volume.value(),         s.mass.value(),
+          s.momentum.value(),     s.second.value(),         s.momentum_xyz.value(),
+          s.second_xyz.value(),   s.contact.value(),        s.contact_xyz.value(),
+          s.contact_wall.value(), s.contact_normal.value(), s.fabric.value(),
+          s.segments.value()};
 }
 
 template <int D>
@@ -165,9 +176,12 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
   constexpr auto& axes = Coordinates::kAxes;
   constexpr auto shear = Coordinates::kShear;
   const double d = options.diameter;
+  std::vector<HalfCellSums<D>> half_cells;
+  for (const HalfCellExactSums& c : half_cells_)
+    half_cells.push_back({c.mass.value(), c.momentum.value(), c.lateral.value(), c.height.value()});
   Table t(grid.size());
   for (int bin = 0; bin < grid.size(); ++bin) {
-    const BinSums& s = bins_[bin];
+    const BinValues s = values(bins_[bin]);
     const double volume = coords_.bin_volume(bin);
     const double snapshots_volume = samples_ * volume;
     const double n = s.count / snapshots_volume;
@@ -218,7 +232,7 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
 
     // Shear quantities along the outward lateral direction (see CartesianLayers::outward_sign).
     const double raw_rate =
-        shear_rate<D>(grid, half_cells_, bin, Coordinates::kLateral, Coordinates::kNormal);
+        shear_rate<D>(grid, half_cells, bin, Coordinates::kLateral, Coordinates::kNormal);
     const double sign = coords_.outward_sign(bin);
     const double rate = sign * raw_rate;
     const double shear_stress = sign * stress(shear[0], shear[1]);

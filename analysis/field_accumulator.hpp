@@ -16,7 +16,9 @@
 // over mass summed over the window), which needs only sums and avoids the (N-1)/N bias of a
 // per-snapshot mean in sparse bins. Wall grains are not part of the flow fields; their contacts
 // with flowing grains do count in the contact stress, and their part of it is kept apart
-// (stress_contact_wall), beside the normal part and the fabric of the transfers.
+// (stress_contact_wall), beside the normal part and the fabric of the transfers. Every sum is
+// exact (analysis/exact_sums.hpp): the fields are the same bits in whatever order the grains and
+// transfers of a snapshot come.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,6 +30,7 @@
 #include "analysis/bin_grid.hpp"
 #include "analysis/cartesian_layers.hpp"
 #include "analysis/cylindrical_rings.hpp"
+#include "analysis/exact_sums.hpp"
 #include "analysis/strain_rate.hpp"
 #include "analysis/table.hpp"
 #include "analysis/velocity_distribution.hpp"
@@ -79,25 +82,25 @@ class FieldAccumulator {
   template <class Visitor>
   void visit_state(Visitor& v) {
     v.each("bins", bins_, [](auto& b, BinSums& s) {
-      b("count", s.count);
-      b("volume", s.volume);
-      b("mass", s.mass);
-      b("momentum", s.momentum);
-      b("second", s.second);
-      b("momentum_xyz", s.momentum_xyz);
-      b("second_xyz", s.second_xyz);
-      b("contact", s.contact);
-      b("contact_xyz", s.contact_xyz);
-      b("contact_wall", s.contact_wall);
-      b("contact_normal", s.contact_normal);
-      b("fabric", s.fabric);
-      b("segments", s.segments);
+      s.count.visit(b, "count");
+      s.volume.visit(b, "volume");
+      s.mass.visit(b, "mass");
+      s.momentum.visit(b, "momentum");
+      s.second.visit(b, "second");
+      s.momentum_xyz.visit(b, "momentum_xyz");
+      s.second_xyz.visit(b, "second_xyz");
+      s.contact.visit(b, "contact");
+      s.contact_xyz.visit(b, "contact_xyz");
+      s.contact_wall.visit(b, "contact_wall");
+      s.contact_normal.visit(b, "contact_normal");
+      s.fabric.visit(b, "fabric");
+      s.segments.visit(b, "segments");
     });
-    v.each("half_cells", half_cells_, [](auto& c, HalfCellSums<D>& h) {
-      c("mass", h.mass);
-      c("momentum", h.momentum);
-      c("lateral", h.lateral);
-      c("height", h.height);
+    v.each("half_cells", half_cells_, [](auto& c, HalfCellExactSums& h) {
+      h.mass.visit(c, "mass");
+      h.momentum.visit(c, "momentum");
+      h.lateral.visit(c, "lateral");
+      h.height.visit(c, "height");
     });
     auto vdf = v.nested("vdf");
     vdf_.visit_state(vdf);
@@ -108,20 +111,31 @@ class FieldAccumulator {
   }
 
  private:
-  struct BinSums {
-    double count = 0.0;   // grain centres, summed over snapshots
-    double volume = 0.0;  // grain volume (area) inside the bin
-    double mass = 0.0;
-    Vec<D> momentum = Vec<D>::Zero();  // local frame
-    Mat second = Mat::Zero();          // sum m v v^T, local frame
-    Vec<D> momentum_xyz = Vec<D>::Zero();
-    Mat second_xyz = Mat::Zero();
-    Mat contact = Mat::Zero();  // sum J r^T A, local frame
-    Mat contact_xyz = Mat::Zero();
-    Mat contact_wall = Mat::Zero();    // sum J r^T A of transfers with a wall grain or plate
-    Mat contact_normal = Mat::Zero();  // sum (J.n) n r^T A, local frame
-    Mat fabric = Mat::Zero();          // sum A n n^T, local frame
-    double segments = 0.0;             // sum A
+  // Summed over the window's snapshots and transfers, exactly (analysis/exact_sums.hpp).
+  template <class Scalar, class Vector, class Matrix>
+  struct BinTerms {
+    Scalar count{};   // grain centres, summed over snapshots
+    Scalar volume{};  // grain volume (area) inside the bin
+    Scalar mass{};
+    Vector momentum{};  // local frame
+    Matrix second{};    // sum m v v^T, local frame
+    Vector momentum_xyz{};
+    Matrix second_xyz{};
+    Matrix contact{};  // sum J r^T A, local frame
+    Matrix contact_xyz{};
+    Matrix contact_wall{};    // sum J r^T A of transfers with a wall grain or plate
+    Matrix contact_normal{};  // sum (J.n) n r^T A, local frame
+    Matrix fabric{};          // sum A n n^T, local frame
+    Scalar segments{};        // sum A
+  };
+  using BinSums = BinTerms<ExactSums<double>, ExactSums<Vec<D>>, ExactSums<Mat>>;
+  using BinValues = BinTerms<double, Vec<D>, Mat>;  // what BinSums add up to
+  static BinValues values(const BinSums& s);
+
+  struct HalfCellExactSums {
+    ExactSums<double> mass;
+    ExactSums<Vec<D>> momentum;
+    ExactSums<double> lateral, height;
   };
 
   // Whether partner `id` is a target (wall) grain or the plate (kPlateId, the only negative id).
@@ -132,7 +146,7 @@ class FieldAccumulator {
   BinSpec spec_;
   Coordinates coords_;
   std::vector<BinSums> bins_;
-  std::vector<HalfCellSums<D>> half_cells_;
+  std::vector<HalfCellExactSums> half_cells_;
   VelocityDistribution<D> vdf_;
   int samples_ = 0;
   int transfer_samples_ = 0;  // samples that cover time (elapsed > 0)

@@ -4,38 +4,41 @@
 #include <cmath>
 #include <limits>
 
+#include "core/exact_sum.hpp"
+
 namespace granjet::analysis {
 namespace {
 
 // <x^4>/<x^2>^2 of values of zero mean (flatness is blind to their scale); NaN without values.
+// Exact sums: the same bits in any order of the values.
 double fourth_over_second_squared(const std::vector<double>& x) {
   if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double x2 = 0.0, x4 = 0.0;
+  ExactSum x2, x4;
   for (double v : x) {
-    x2 += v * v;
-    x4 += v * v * v * v;
+    x2.add(v * v);
+    x4.add(v * v * v * v);
   }
-  x2 /= x.size();
-  x4 /= x.size();
-  return x4 / (x2 * x2);
+  const double second = x2.value() / x.size(), fourth = x4.value() / x.size();
+  return fourth / (second * second);
 }
 
 }  // namespace
 
 template <int D>
 typename VelocityDistribution<D>::BinMoments VelocityDistribution<D>::moments(int component) const {
-  std::vector<double> count(bins_, 0.0), sum(bins_, 0.0), squares(bins_, 0.0);
+  std::vector<double> count(bins_, 0.0);
+  std::vector<ExactSum> sum(bins_), squares(bins_);
   for (std::size_t k = 0; k < bin_.size(); ++k) {
     const double v = velocity_[k][component];
     count[bin_[k]] += 1.0;
-    sum[bin_[k]] += v;
-    squares[bin_[k]] += v * v;
+    sum[bin_[k]].add(v);
+    squares[bin_[k]].add(v * v);
   }
   BinMoments m{std::vector<double>(bins_), std::vector<double>(bins_)};
   for (int b = 0; b < bins_; ++b) {
-    m.mean[b] = count[b] > 0.0 ? sum[b] / count[b] : 0.0;
+    m.mean[b] = count[b] > 0.0 ? sum[b].value() / count[b] : 0.0;
     // The population deviation, so each bin's scaled values have exactly unit variance.
-    const double var = count[b] > 1.0 ? squares[b] / count[b] - m.mean[b] * m.mean[b] : 0.0;
+    const double var = count[b] > 1.0 ? squares[b].value() / count[b] - m.mean[b] * m.mean[b] : 0.0;
     m.sd[b] = std::sqrt(std::max(var, 0.0));
   }
   return m;

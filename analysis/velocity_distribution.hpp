@@ -8,7 +8,8 @@
 // unit-variance sample and a mixture of bins at different temperatures still has the flatness
 // of its shape; per region, one scale for all, so such a mixture adds flatness. The flatness
 // does not depend on the constant factor of the scale, and all grains weigh the same (mass m,
-// the study's convention): T_a's m cancels.
+// the study's convention): T_a's m cancels. The moments are exact sums (core/exact_sum.hpp), so
+// the values' order does not change a bit of them.
 #pragma once
 
 #include <span>

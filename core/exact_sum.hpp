@@ -10,12 +10,15 @@
 // plain sum.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
 
 namespace granjet {
 
@@ -49,6 +52,16 @@ class ExactSum {
   std::span<std::int64_t> words() {
     carry();
     return word_;
+  }
+
+  // The sum whose words() were `words` (a checkpoint's copy of them): it goes on as that one.
+  static ExactSum of_words(std::span<const std::int64_t> words) {
+    if (words.size() != kWords)
+      throw std::invalid_argument("an exact sum has " + std::to_string(kWords) + " words, not " +
+                                  std::to_string(words.size()));
+    ExactSum s;
+    std::copy(words.begin(), words.end(), s.word_.begin());
+    return s;
   }
 
   // The sum of the terms, rounded once to the nearest double.

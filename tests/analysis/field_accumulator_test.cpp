@@ -6,20 +6,25 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <numbers>
+#include <numeric>
 #include <random>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/jet_geometry.hpp"
 #include "core/plate_face.hpp"
 #include "core/sample_region.hpp"
+#include "core/state_archive.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -499,6 +504,21 @@ TYPED_TEST(FieldAccumulatorTyped, CentralForcesAreAllNormalAndFabricHasUnitTrace
   }
 }
 
+// Every field of `a` has the bits of `b`'s (a NaN matches a NaN), and most are finite.
+void expect_same_fields(const Table& a, const Table& b) {
+  ASSERT_EQ(a.names(), b.names());
+  int finite = 0;
+  for (const std::string& name : a.names())
+    for (std::size_t bin = 0; bin < a.rows(); ++bin) {
+      const double x = a.at(bin, name), y = b.at(bin, name);
+      finite += std::isfinite(x);
+      EXPECT_TRUE(std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y) ||
+                  (std::isnan(x) && std::isnan(y)))
+          << name << " in bin " << bin << ": " << x << " against " << y;
+    }
+  EXPECT_GT(finite, static_cast<int>(a.rows() * a.names().size() * 3 / 4));
+}
+
 // What reach() leaves out counts for nothing: a run over MPI ranks gathers to rank 0 only the
 // grains and transfers that it holds (core/sample_region.hpp), and its fields must be those of
 // all, bit for bit. Grains and short transfers scattered over a box well beyond the cylinder;
@@ -548,18 +568,102 @@ TYPED_TEST(FieldAccumulatorTyped, WhatItsReachLeavesOutCountsNothing) {
   held.sample(p_held, {}, 0.0);
   all.sample(p, transfers, 0.3);
   held.sample(p_held, transfers_held, 0.3);
-  const Table a = all.fields({}), b = held.fields({});
-  ASSERT_EQ(a.names(), b.names());
-  int finite = 0;
-  for (const std::string& name : a.names())
-    for (std::size_t bin = 0; bin < a.rows(); ++bin) {
-      const double x = a.at(bin, name), y = b.at(bin, name);
-      finite += std::isfinite(x);
-      EXPECT_TRUE(std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y) ||
-                  (std::isnan(x) && std::isnan(y)))
-          << name << " in bin " << bin << ": " << x << " against " << y;
-    }
-  EXPECT_GT(finite, static_cast<int>(a.rows() * a.names().size() * 3 / 4));
+  expect_same_fields(all.fields({}), held.fields({}));
 }
+
+// Random grains and transfers in and around the mesh (a shear flow, some target grains).
+template <int D>
+std::pair<Particles<D>, std::vector<PairImpulse<D>>> random_sample(const BinSpec& spec,
+                                                                   std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> length(0.2, 1.1);
+  Particles<D> p;
+  std::vector<PairImpulse<D>> transfers;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec<D> x = random_point<D>(rng, spec, -1.0);
+    Vec<D> v, u, impulse;
+    for (int d = 0; d < D; ++d) {
+      v[d] = 0.2 * gauss(rng) + (d == 0 ? 0.1 * x[D - 1] : 0.0);
+      u[d] = gauss(rng);
+      impulse[d] = gauss(rng);
+    }
+    p.add(i, i % 40 == 0 ? GrainKind::kWall : GrainKind::kFree, x, v, 0.5, 1.0);
+    transfers.push_back(
+        {GrainId(i), GrainId((7 * i + 1) % 4000), x, x + length(rng) * u.normalized(), impulse});
+  }
+  return {std::move(p), std::move(transfers)};
+}
+
+// The same grains and transfers in another order: every sum is exact, so every field, the
+// velocity distributions' flatness among them, keeps its bits. (A run over MPI ranks sums its
+// ranks' grains apart and in other orders.)
+TYPED_TEST(FieldAccumulatorTyped, OrderOfGrainsAndTransfersChangesNoBit) {
+  constexpr int D = TypeParam::value;
+  const BinSpec spec = spec_for(D);
+  FieldAccumulator<D> in_order(spec), shuffled(spec);
+  std::mt19937_64 rng(5);
+  for (int s = 0; s < 3; ++s) {
+    auto [p, transfers] = random_sample<D>(spec, 100 + s);
+    in_order.sample(p, transfers, s == 0 ? 0.0 : 0.5);
+    std::vector<std::uint32_t> order(p.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::shuffle(order.begin(), order.end(), rng);
+    p.gather(order);
+    std::shuffle(transfers.begin(), transfers.end(), rng);
+    shuffled.sample(p, transfers, s == 0 ? 0.0 : 0.5);
+  }
+  expect_same_fields(in_order.fields({}), shuffled.fields({}));
+  for (int c = 0; c < D; ++c) {
+    const double x = in_order.velocity_distribution().flatness_region(c);
+    EXPECT_TRUE(std::isfinite(x));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(x),
+              std::bit_cast<std::uint64_t>(shuffled.velocity_distribution().flatness_region(c)));
+  }
+}
+
+// A checkpoint of a granjet that kept plain sums (each sum rounded, under its own name) resumes:
+// the rounded sums become the first terms, and the fields read as they did when it was written.
+TYPED_TEST(FieldAccumulatorTyped, CheckpointOfPlainSumsResumes) {
+  constexpr int D = TypeParam::value;
+  const BinSpec spec = spec_for(D);
+  FieldAccumulator<D> straight(spec);
+  auto [p, transfers] = random_sample<D>(spec, 7);
+  straight.sample(p, {}, 0.0);
+  straight.sample(p, transfers, 0.5);
+  StateArchive exact;
+  StateWriter writer(exact, "f");
+  straight.visit_state(writer);
+  StateArchive plain;  // the older layout: name -> the rounded sum's components
+  for (const auto& [name, values] : exact.all_reals()) plain.put_reals(name, values);
+  int sums = 0;
+  for (const auto& [name, words] : exact.all_integers()) {
+    if (!name.ends_with("_exact")) {
+      plain.put_integers(name, words);
+      continue;
+    }
+    const std::size_t each = ExactSum{}.words().size(), components = words.size() / each;
+    std::vector<double> rounded;
+    for (std::size_t k = 0; k < components; ++k)
+      rounded.push_back(ExactSum::of_words(std::span(words).subspan(k * each, each)).value());
+    plain.put_reals(name.substr(0, name.size() - 6), rounded);
+    ++sums;
+  }
+  ASSERT_GT(sums, 0);
+
+  FieldAccumulator<D> from_exact(spec), from_plain(spec);
+  StateReader exact_reader(exact, "f"), plain_reader(plain, "f");
+  from_exact.visit_state(exact_reader);
+  from_plain.visit_state(plain_reader);
+  const Table expected = straight.fields({});
+  expect_same_fields(from_exact.fields({}), expected);
+  expect_same_fields(from_plain.fields({}), expected);
+  // Both go on sampling.
+  from_plain.sample(p, transfers, 0.5);
+  from_exact.sample(p, transfers, 0.5);
+  const Table c = from_exact.fields({}), d = from_plain.fields({});
+  EXPECT_NEAR(c.at(0, "n"), d.at(0, "n"), 1e-12 * std::abs(c.at(0, "n")));
+}
+
 }  // namespace
 }  // namespace granjet::analysis

@@ -123,5 +123,20 @@ TEST(ExactSum, AnyOrderAndAnySplitGiveTheSameBits) {
   }
 }
 
+// A checkpoint keeps the words: the sum made of them goes on with the same bits.
+TEST(ExactSum, WordsMakeTheSameSumAgain) {
+  const std::vector<double> terms = random_terms(1000, -60, 60, 11);
+  ExactSum whole, first;
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    whole.add(terms[k]);
+    if (k < terms.size() / 2) first.add(terms[k]);
+  }
+  const auto words = first.words();
+  ExactSum again = ExactSum::of_words(std::vector<std::int64_t>(words.begin(), words.end()));
+  for (std::size_t k = terms.size() / 2; k < terms.size(); ++k) again.add(terms[k]);
+  expect_bits(whole.value(), again.value());
+  EXPECT_THROW(ExactSum::of_words(std::vector<std::int64_t>(3, 0)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace granjet
