@@ -45,6 +45,24 @@ class ExactSums {
     }
   }
 
+  // The components' words one after another, after `out`'s (ExactSum::words: carried, so that
+  // up to 2^30 such lists may be added up word by word, as over MPI ranks).
+  void append_words(std::vector<std::int64_t>& out) {
+    for (ExactSum& s : sum_) {
+      const std::span<std::int64_t> w = s.words();
+      out.insert(out.end(), w.begin(), w.end());
+    }
+  }
+  // The sums whose words append_words gave, from the front of `words`; returns what is left.
+  std::span<const std::int64_t> take_words(std::span<const std::int64_t> words) {
+    const std::size_t each = ExactSum{}.words().size();
+    if (words.size() < kSize * each)
+      throw std::runtime_error("exact sums: " + std::to_string(words.size()) + " words, " +
+                               std::to_string(kSize * each) + " needed");
+    for (int k = 0; k < kSize; ++k) sum_[k] = ExactSum::of_words(words.subspan(k * each, each));
+    return words.subspan(kSize * each);
+  }
+
   // Checkpoints: the components' words one after another under name + "_exact". A checkpoint
   // of a granjet that kept plain sums holds the rounded sum under `name`: that becomes the
   // first term, and the sum goes on from it.
@@ -61,19 +79,12 @@ class ExactSums {
       }
       std::vector<std::int64_t> words;
       v(exact, words);
-      if (words.size() % kSize != 0)
-        throw std::runtime_error("checkpoint entry " + exact + " holds " +
-                                 std::to_string(words.size()) + " words, not " +
-                                 std::to_string(kSize) + " sums' worth");
-      const std::size_t each = words.size() / kSize;
-      for (int k = 0; k < kSize; ++k)
-        sum_[k] = ExactSum::of_words(std::span(words).subspan(k * each, each));
+      if (!take_words(words).empty())
+        throw std::runtime_error("checkpoint entry " + exact + " holds more than " +
+                                 std::to_string(kSize) + " sums");
     } else {
       std::vector<std::int64_t> words;
-      for (ExactSum& s : sum_) {
-        const std::span<std::int64_t> w = s.words();
-        words.insert(words.end(), w.begin(), w.end());
-      }
+      append_words(words);
       v(exact, words);
     }
   }

@@ -38,6 +38,7 @@
 
 #include "analysis/kinetic_theory.hpp"
 #include "analysis/segment_clip.hpp"
+#include "core/rank_team.hpp"
 
 namespace granjet::analysis {
 namespace {
@@ -99,6 +100,14 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
     s.second_xyz.add(m * v[i] * v[i].transpose());
     vdf_.add(bin, local);
   }
+  if (elapsed > 0.0) sample_transfers(transfers);
+  ++samples_;
+  if (elapsed > 0.0) ++transfer_samples_;
+  transfer_time_ += elapsed;
+}
+
+template <int D>
+void FieldAccumulator<D>::sample_transfers(std::span<const PairImpulse<D>> transfers) {
   // [C.31]-[C.33]: each transfer's J r^T, r = r_i - r_j, shared by the length fraction A of the
   // segment r_i -> r_j in each bin, rotated to the local frame at the middle of that stretch.
   // Its normal part (J.n) n r^T = (J.r) n n^T and the fabric share A n n^T go the same way.
@@ -125,9 +134,35 @@ void FieldAccumulator<D>::sample(const Particles<D>& particles,
       b.segments.add(s1 - s0);
     });
   }
-  ++samples_;
-  if (elapsed > 0.0) ++transfer_samples_;
-  transfer_time_ += elapsed;
+}
+
+template <int D>
+void FieldAccumulator<D>::join(const RankTeam& team) {
+  if (team.alone()) return;
+  std::vector<std::int64_t> words;
+  const auto each_sum = [&](auto&& visit) {
+    for (BinSums& b : bins_)
+      for (auto* sums : {&b.count, &b.volume, &b.mass, &b.segments}) visit(*sums);
+    for (BinSums& b : bins_)
+      for (auto* sums : {&b.momentum, &b.momentum_xyz}) visit(*sums);
+    for (BinSums& b : bins_)
+      for (auto* sums : {&b.second, &b.second_xyz, &b.contact, &b.contact_xyz, &b.contact_wall,
+                         &b.contact_normal, &b.fabric})
+        visit(*sums);
+    for (HalfCellExactSums& c : half_cells_) {
+      for (auto* sums : {&c.mass, &c.lateral, &c.height}) visit(*sums);
+      visit(c.momentum);
+    }
+  };
+  each_sum([&](auto& sums) { sums.append_words(words); });
+  team.sum(words);
+  if (team.rank() == 0) {
+    std::span<const std::int64_t> rest = words;
+    each_sum([&](auto& sums) { rest = sums.take_words(rest); });
+  } else {
+    each_sum([](auto& sums) { sums = {}; });
+  }
+  vdf_.join(team);
 }
 
 template <int D>

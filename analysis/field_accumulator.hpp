@@ -53,7 +53,7 @@ struct FieldOptions {
 };
 
 template <int D>
-class FieldAccumulator {
+class FieldAccumulator final : public OwnSampler<D> {
  public:
   using Coordinates = BinCoordinates<D>;
   using Mat = Eigen::Matrix<double, D, D>;
@@ -65,9 +65,14 @@ class FieldAccumulator {
   // to count in sample(): the bins and the half-cells beyond their lateral ends.
   SampleRegion reach() const;
   // Adds one snapshot and the transfers of the `elapsed` time before it. The first snapshot of a
-  // window comes with no transfers and elapsed = 0 (earlier transfers are outside the window).
+  // window comes with elapsed = 0 (earlier transfers are outside the window): transfers that
+  // cover no time count nothing.
   void sample(const Particles<D>& particles, std::span<const PairImpulse<D>> transfers,
-              double elapsed);
+              double elapsed) override;
+  // Over MPI ranks, each rank sums its own grains and contacts (Simulator::sample_own): the
+  // sums and the velocity distributions' values join onto rank 0, and the other ranks start
+  // again from none. The sample counts and times are alike on every rank and stay as they are.
+  void join(const RankTeam& team) override;
   int samples() const { return samples_; }
   double transfer_time() const { return transfer_time_; }
 
@@ -131,6 +136,7 @@ class FieldAccumulator {
   using BinSums = BinTerms<ExactSums<double>, ExactSums<Vec<D>>, ExactSums<Mat>>;
   using BinValues = BinTerms<double, Vec<D>, Mat>;  // what BinSums add up to
   static BinValues values(const BinSums& s);
+  void sample_transfers(std::span<const PairImpulse<D>> transfers);
 
   struct HalfCellExactSums {
     ExactSums<double> mass;

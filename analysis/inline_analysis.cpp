@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "analysis/analysis_json.hpp"
 #include "analysis/field_writer.hpp"
@@ -10,7 +11,7 @@ namespace granjet::analysis {
 
 template <int D>
 InlineAnalysis<D>::InlineAnalysis(const Scene& scene, Simulator<D>& sim)
-    : analysis_(AnalysisConfig::for_scene(scene)), half_step_(0.5 * scene.dt()) {
+    : analysis_(AnalysisConfig::for_scene(scene)), half_step_(0.5 * scene.dt()), sim_(&sim) {
   // The event-driven backend keeps impulses only when asked: from the start, so that a run
   // resumed inside the window counts them from its checkpoint (observe() turns this off
   // outside the window).
@@ -26,25 +27,26 @@ template <int D>
 void InlineAnalysis<D>::observe(Simulator<D>& sim) {
   if (!analysis_.due(sim.time())) return;
   const auto start = std::chrono::steady_clock::now();
+  const double time = sim.time();
   // Only the window's samples use transfers, each those since the previous sample: the window's
-  // first sample starts the count, and outside the window none is gathered (over ranks, the
-  // contacts to rank 0) nor recorded (the event-driven backend's every impulse). Over ranks
-  // only what the sample looks at comes to rank 0: the scattered grains, and in the window
-  // the grains and contacts at the bins.
-  const bool counted = analysis_.in_window(sim.time());
-  sim.record_transfers(counted);
-  transfers_.clear();
-  SampleRegion region = analysis_.sample_region(sim.time());
-  // A grain first found scattered now was within region.beyond at the last sample, which looked
-  // at every grain beyond it, and has moved no farther than the travel since: the grains beyond
-  // that were all counted then, and need not come to rank 0 again. The first sample of a run,
-  // or after a resume, looks at them all.
+  // first sample starts the count, and outside the window none is recorded (the event-driven
+  // backend's every impulse).
+  sim.record_transfers(analysis_.in_window(time));
+  // The scattered grains come to rank 0. A grain first found scattered now was within
+  // region.beyond at the last sample, which looked at every grain beyond it, and has moved no
+  // farther than the travel since: the grains beyond that were all counted then, and need not
+  // come again. The first sample of a run, or after a resume, looks at them all.
+  SampleRegion scattered = analysis_.scatter_region();
   const double travel = sim.travel();
   if (std::isfinite(travel - travel_at_sample_))
-    region.until = region.beyond + (travel - travel_at_sample_);
-  if (counted) sim.collect_transfers_in(transfers_, region);
-  analysis_.sample(sim.time(), sim.particles_in(region), transfers_);
+    scattered.until = scattered.beyond + (travel - travel_at_sample_);
+  analysis_.observe_scattering(time, sim.particles_in(scattered));
   travel_at_sample_ = travel;
+  // The bins' grains and transfers: over ranks each rank sums its own, joined at checkpoints
+  // and at the end (join_samples).
+  if (const std::optional<double> elapsed = analysis_.book_window(time, true))
+    sim.sample_own(analysis_.bins_region(), true, *elapsed, analysis_.bins());
+  analysis_.schedule_after(time);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -53,6 +55,7 @@ std::string InlineAnalysis<D>::store(const std::filesystem::path& file,
                                      const std::filesystem::path& published_as,
                                      nlohmann::json& summary) {
   if (!window_sampled()) return "no fields written: the analysis window never started";
+  sim_->join_samples(analysis_.bins());
   const std::vector<RunResult> runs{finish()};
   summary["analysis"] = to_json(write_ensemble(file, runs, D, published_as));
   summary["analysis"]["seconds"] = seconds_;

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "analysis/run_analysis.hpp"
@@ -34,15 +35,17 @@ class InlineAnalysis final : public VisitingObserver<D, InlineAnalysis<D>> {
   // Wall time spent in observe(), to report what the analysis costs the run.
   double seconds() const { return seconds_; }
 
+  // Checkpoints: what the samples so far have summed, the ranks' sums joined first.
   template <class Visitor>
   void visit_state(Visitor& v) {
+    if constexpr (std::is_same_v<Visitor, StateWriter>) sim_->join_samples(analysis_.bins());
     analysis_.visit_state(v);
   }
 
  private:
   RunAnalysis<D> analysis_;
-  double half_step_;  // the least the run advances between two looks
-  std::vector<PairImpulse<D>> transfers_;
+  double half_step_;   // the least the run advances between two looks
+  Simulator<D>* sim_;  // whose ranks' sums join (Simulator::join_samples)
   // Simulator::travel at the last sample (NaN: none since the start or the resume).
   double travel_at_sample_ = std::numeric_limits<double>::quiet_NaN();
   double seconds_ = 0.0;

@@ -92,8 +92,8 @@ bool RunAnalysis<D>::in_window(double time) const {
 }
 
 template <int D>
-SampleRegion RunAnalysis<D>::sample_region(double time) const {
-  SampleRegion region = in_window(time) ? fields_.reach() : SampleRegion{};
+SampleRegion RunAnalysis<D>::scatter_region() const {
+  SampleRegion region;
   region.beyond = config_.scatter_radius;
   return region;
 }
@@ -112,18 +112,30 @@ void RunAnalysis<D>::sample(double time, const Particles<D>& particles) {
 template <int D>
 void RunAnalysis<D>::take(double time, const Particles<D>& particles,
                           std::span<const PairImpulse<D>> transfers, bool transfers_known) {
+  observe_scattering(time, particles);
+  if (const std::optional<double> elapsed = book_window(time, transfers_known))
+    fields_.sample(particles, transfers, *elapsed);
+  schedule_after(time);
+}
+
+template <int D>
+void RunAnalysis<D>::observe_scattering(double time, const Particles<D>& particles) {
   scattering_.observe(particles, time);
-  if (in_window(time)) {
-    if (open_ && transfers_known) {
-      fields_.sample(particles, transfers, time - last_window_time_);
-    } else {
-      // The first window sample: earlier transfers lie before the window. Without transfers
-      // (stored frames) no time is booked, so the contact stress stays unmeasured (NaN).
-      fields_.sample(particles, {}, 0.0);
-      open_ = true;
-    }
-    last_window_time_ = time;
-  }
+}
+
+template <int D>
+std::optional<double> RunAnalysis<D>::book_window(double time, bool transfers_known) {
+  if (!in_window(time)) return std::nullopt;
+  // The window's first sample covers no time: earlier transfers lie before the window. Without
+  // transfers (stored frames) no time is booked, so the contact stress stays unmeasured (NaN).
+  const double elapsed = open_ && transfers_known ? time - last_window_time_ : 0.0;
+  open_ = true;
+  last_window_time_ = time;
+  return elapsed;
+}
+
+template <int D>
+void RunAnalysis<D>::schedule_after(double time) {
   const double dt = config_.sample_interval;
   next_ = (std::floor(time / dt + 1e-9) + 1.0) * dt;
   if (time < config_.window_start && next_ > config_.window_start) next_ = config_.window_start;

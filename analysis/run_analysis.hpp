@@ -17,6 +17,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -88,16 +89,27 @@ class RunAnalysis {
   double next_sample_time() const { return next_; }
   bool due(double time) const { return time >= next_ - 1e-9 * config_.sample_interval; }
   bool in_window(double time) const;
-  // What a sample at `time` looks at (Simulator::particles_in, collect_transfers_in): the
-  // grains beyond the scatter radius and, inside the window, every grain and transfer that
-  // reaches into the bins.
-  SampleRegion sample_region(double time) const;
   // `transfers`: everything collect_transfers returned since the previous sample (they may be
   // left empty outside the window, where they are not used).
   void sample(double time, const Particles<D>& particles,
               std::span<const PairImpulse<D>> transfers);
   // A sample without momentum transfers (stored frames): the contact stress stays unmeasured.
   void sample(double time, const Particles<D>& particles);
+
+  // A sample in parts, for a run whose grains are spread over MPI ranks (InlineAnalysis): the
+  // scattered grains, gathered (scatter_region: those beyond the scatter radius, and every
+  // target grain); then, inside the window, the bins' grains and transfers, which each rank
+  // sums apart (Simulator::sample_own into bins(), over bins_region()) for the time that
+  // book_window returns; then schedule_after.
+  SampleRegion scatter_region() const;
+  void observe_scattering(double time, const Particles<D>& particles);
+  // Inside the window: the time the sample's transfers cover (0 for the window's first, or
+  // without transfers: none are counted); outside it: none.
+  std::optional<double> book_window(double time, bool transfers_known);
+  SampleRegion bins_region() const { return fields_.reach(); }
+  FieldAccumulator<D>& bins() { return fields_; }
+  void schedule_after(double time);
+
   RunResult finish() const;
 
   const FieldAccumulator<D>& field_accumulator() const { return fields_; }

@@ -45,6 +45,19 @@ typename VelocityDistribution<D>::BinMoments VelocityDistribution<D>::moments(in
 }
 
 template <int D>
+void VelocityDistribution<D>::join(const RankTeam& team) {
+  if (team.alone()) return;
+  std::vector<double> mine;
+  mine.reserve(D * velocity_.size());
+  for (const Vec<D>& v : velocity_) mine.insert(mine.end(), v.data(), v.data() + D);
+  bin_ = team.gather<int>(bin_);  // rank 0: all of them; the others: none
+  const std::vector<double> all = team.gather<double>(mine);
+  velocity_.resize(all.size() / D);
+  for (std::size_t k = 0; k < velocity_.size(); ++k)
+    for (int d = 0; d < D; ++d) velocity_[k][d] = all[D * k + d];
+}
+
+template <int D>
 std::vector<double> VelocityDistribution<D>::scaled(int component, int bin) const {
   const BinMoments m = moments(component);
   std::vector<double> out;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/dim.hpp"
+#include "core/rank_team.hpp"
 
 namespace granjet::analysis {
 
@@ -29,6 +30,9 @@ class VelocityDistribution {
     velocity_.push_back(velocity);
   }
   std::size_t size() const { return bin_.size(); }
+  // Over MPI ranks: every rank's values join rank 0's (in rank order; the order changes no
+  // moment), and the other ranks keep none. Collective.
+  void join(const RankTeam& team);
 
   // Fluctuations c of one component scaled by their bin's standard deviation, pooled over all
   // bins or of one bin (bin >= 0). Bins with fewer than two values or no spread contribute

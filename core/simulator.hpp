@@ -106,6 +106,24 @@ struct EnergyBalance {
   double total() const { return kinetic + rotational + elastic; }
 };
 
+class RankTeam;
+
+// What a look at a run measures of its grains and contacts as sums that may be taken apart and
+// joined (the analysis' bins): over MPI ranks each rank samples its own (Simulator::sample_own)
+// and the ranks join their sums onto rank 0 (Simulator::join_samples), so that no rank gathers
+// the grains.
+template <int D>
+class OwnSampler {
+ public:
+  virtual ~OwnSampler() = default;
+  // `grains`: those the look's region holds (and every target grain held); `transfers`: the
+  // momentum transfers since the last collect, covering `elapsed` (none at elapsed = 0).
+  virtual void sample(const Particles<D>& grains, std::span<const PairImpulse<D>> transfers,
+                      double elapsed) = 0;
+  // Collective over `team`: rank 0 ends with every rank's samples joined, the others with none.
+  virtual void join(const RankTeam& team) = 0;
+};
+
 template <int D>
 class Simulator {
  public:
@@ -138,6 +156,17 @@ class Simulator {
     (void)region;
     collect_transfers(out);
   }
+  // Hands `sampler` the grains `region` holds and, with `transfers`, collect_transfers_in's
+  // (covering `elapsed`). Over MPI ranks each rank hands its own sampler its own grains and
+  // contacts, with no gather (collective); alone, all of them.
+  virtual void sample_own(const SampleRegion& region, bool transfers, double elapsed,
+                          OwnSampler<D>& sampler) {
+    std::vector<PairImpulse<D>> collected;
+    if (transfers) collect_transfers_in(collected, region);
+    sampler.sample(particles_in(region), collected, elapsed);
+  }
+  // Over MPI ranks: every rank's sampler joins onto rank 0's (collective). Alone: nothing.
+  virtual void join_samples(OwnSampler<D>& sampler) { (void)sampler; }
   // Backends that must record transfers as they happen (event-driven: every collision impulse)
   // keep them only while asked to, so a run that never collects them does not hoard memory.
   // Time-stepped backends sample on demand and ignore this.

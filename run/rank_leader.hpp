@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <iterator>
 #include <memory>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -29,6 +30,8 @@ enum class RankOrder : int {
   kParticlesIn,
   kTransfers,
   kTransfersIn,
+  kSampleOwn,
+  kJoinSamples,
   kStats,
   kForces,
   kEnergy,
@@ -42,9 +45,10 @@ enum class RankOrder : int {
 
 struct RankCall {
   RankOrder order = RankOrder::kDone;
-  double value = 0.0;   // advance_to's time, checkpoint_share's rank
-  SampleRegion region;  // particles_in's and collect_transfers_in's
-  FrameAsk frame;       // frame's
+  double value = 0.0;      // advance_to's time, checkpoint_share's rank, sample_own's elapsed
+  SampleRegion region;     // particles_in's, collect_transfers_in's and sample_own's
+  FrameAsk frame;          // frame's
+  bool transfers = false;  // sample_own's
 };
 
 // A follower's frame sink: only rank 0 hears of a frame.
@@ -111,6 +115,15 @@ class RankLeader final : public Simulator<D> {
     call(RankOrder::kTransfersIn, 0.0, region);
     sim_->collect_transfers_in(out, region);
   }
+  void sample_own(const SampleRegion& region, bool transfers, double elapsed,
+                  OwnSampler<D>& sampler) override {
+    call(RankOrder::kSampleOwn, elapsed, region, {}, transfers);
+    sim_->sample_own(region, transfers, elapsed, sampler);
+  }
+  void join_samples(OwnSampler<D>& sampler) override {
+    call(RankOrder::kJoinSamples);
+    sim_->join_samples(sampler);
+  }
   SimStats stats() const override {
     call(RankOrder::kStats);
     return sim_->stats();
@@ -147,8 +160,8 @@ class RankLeader final : public Simulator<D> {
 
  private:
   void call(RankOrder order, double value = 0.0, const SampleRegion& region = {},
-            const FrameAsk& frame = {}) const {
-    RankCall c{order, value, region, frame};
+            const FrameAsk& frame = {}, bool transfers = false) const {
+    RankCall c{order, value, region, frame, transfers};
     ranks_.broadcast(c);
   }
 
@@ -156,10 +169,21 @@ class RankLeader final : public Simulator<D> {
   RankTeam ranks_;
 };
 
-// A rank other than 0: makes each call the leader makes, until it is done. `archive`: the
-// checkpoint a resumed run restores (this rank's read of it).
+// The sampler a follower was given for the leader's looks; none is a logic error (the run
+// builds one wherever its looks sample apart).
 template <int D>
-void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive* archive) {
+OwnSampler<D>& own_sampler(OwnSampler<D>* sampler) {
+  if (sampler == nullptr)
+    throw std::logic_error("the leader samples apart but this rank was given no sampler");
+  return *sampler;
+}
+
+// A rank other than 0: makes each call the leader makes, until it is done. `archive`: the
+// checkpoint a resumed run restores (this rank's read of it); `sampler`: this rank's part of
+// what the leader's looks sample apart (Simulator::sample_own), if they do.
+template <int D>
+void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive* archive,
+                   OwnSampler<D>* sampler) {
   std::vector<std::byte> share;  // of the last checkpoint, until rank 0 takes it
   for (;;) {
     RankCall c;
@@ -190,6 +214,12 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
         sim.collect_transfers_in(ignored, c.region);
         break;
       }
+      case RankOrder::kSampleOwn:
+        sim.sample_own(c.region, c.transfers, c.value, own_sampler(sampler));
+        break;
+      case RankOrder::kJoinSamples:
+        sim.join_samples(own_sampler(sampler));
+        break;
       case RankOrder::kStats:
         sim.stats();
         break;

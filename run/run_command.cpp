@@ -11,8 +11,10 @@
 #include <sstream>
 
 #include "analysis/checkpoint_file.hpp"
+#include "analysis/field_accumulator.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
+#include "analysis/run_analysis.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
 #include "core/rank_team.hpp"
@@ -339,7 +341,11 @@ void follow(const Scene& resolved, const RunOptions& options, const RankTeam& ra
     // An interrupt is rank 0's to handle: it stops every rank at the same step.
     std::signal(SIGINT, SIG_IGN);
     std::signal(SIGTERM, SIG_IGN);
-    follow_leader(*sim, ranks, resume_from);
+    // This rank's part of the inline analysis' bins (analysis::InlineAnalysis on rank 0).
+    std::optional<analysis::FieldAccumulator<D>> bins;
+    if (resolved.kind == SceneKind::kJet && resolved.analysis.enabled)
+      bins.emplace(analysis::AnalysisConfig::for_scene(resolved).bins);
+    follow_leader<D>(*sim, ranks, resume_from, bins ? &*bins : nullptr);
   } catch (const std::exception& e) {
     std::cerr << "granjet: rank " << ranks.rank() << ": " << e.what() << "\n";
     throw;

@@ -58,6 +58,9 @@ class DemSimulator final : public Simulator<D> {
   double travel() const override { return travelled_ + travel_; }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) override;
+  void sample_own(const SampleRegion& region, bool transfers, double elapsed,
+                  OwnSampler<D>& sampler) override;
+  void join_samples(OwnSampler<D>& sampler) override;
   SimStats stats() const override;
   bool has_contact_forces() const override { return true; }
   void sample_forces(ForceSample<D>& out) const override;
@@ -175,6 +178,15 @@ class DemSimulator final : public Simulator<D> {
   // Those `region` holds (all for none).
   void collect_transfers_over_ranks(std::vector<PairImpulse<D>>& out, double elapsed,
                                     const SampleRegion* region) const;
+  // The transfers over `elapsed` of grain i's contacts that `region` holds (all for none), each
+  // contact under the one grain that lists it in the whole order (for_each_contact_of), then of
+  // its contact with the plate: emit(PairImpulse) for each.
+  template <class Emit>
+  void contact_transfers_of(std::size_t i, double elapsed, const SampleRegion* region,
+                            Emit&& emit) const;
+  template <class Emit>
+  void plate_transfer_of(std::size_t i, double elapsed, const SampleRegion* region,
+                         Emit&& emit) const;
   void sample_forces_over_ranks(ForceSample<D>& out) const;
   std::vector<Vec<D>> force_totals_here() const;
   // join(value_of) for the contacts' rows (value_of(i, emit): grain i's contacts as rows of
@@ -262,6 +274,7 @@ class DemSimulator final : public Simulator<D> {
   WorkBalance balance_;
   double tether_seconds_ = 0.0;  // the tethers' part of the passes since the last look
   mutable Particles<D> whole_;   // particles() over ranks: all grains on rank 0, none elsewhere
+  Particles<D> own_sample_;      // sample_own over ranks: this rank's grains of the look
   mutable bool whole_fresh_ = false;
 };
 

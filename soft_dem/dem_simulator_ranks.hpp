@@ -468,17 +468,50 @@ void DemSimulator<D, Law, kMono, Space>::checkpoint_over_ranks(StateArchive& a) 
 }
 
 template <int D, class Law, bool kMono, class Space>
+template <class Emit>
+void DemSimulator<D, Law, kMono, Space>::contact_transfers_of(std::size_t i, double elapsed,
+                                                              const SampleRegion* region,
+                                                              Emit&& emit) const {
+  const auto x = p_.position();
+  const auto id = p_.id();
+  for_each_contact_of(
+      i,
+      [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+        const Vec<D> at_j = x[i] - space_.separation(x[i], x[j]);
+        if (region != nullptr && !region->holds_transfer<D>(x[i], at_j)) return;
+        Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
+        const Vec<D> f = law_.force(g, v_rel, shear);
+        emit(PairImpulse<D>{id[i], id[j], x[i], at_j, elapsed * f});
+      },
+      [](std::uint32_t) {});
+}
+
+template <int D, class Law, bool kMono, class Space>
+template <class Emit>
+void DemSimulator<D, Law, kMono, Space>::plate_transfer_of(std::size_t i, double elapsed,
+                                                           const SampleRegion* region,
+                                                           Emit&& emit) const {
+  const auto x = p_.position();
+  plate_->contact(
+      x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
+      [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
+        const Vec<D> image = plate_->mirror(x[i]);
+        if (region != nullptr && !region->holds_transfer<D>(x[i], image)) return;
+        const Vec<D> f = plate_->force(i, g, v_rel);
+        emit(PairImpulse<D>{p_.id()[i], kPlateId, x[i], image, elapsed * f});
+      },
+      [] {});
+}
+
+template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
     std::vector<PairImpulse<D>>& out, double elapsed, const SampleRegion* region) const {
   constexpr int N = 2 + 3 * D;
-  const auto x = p_.position();
-  const auto id = p_.id();
-  const auto row_of = [](GrainId i, GrainId j, const Vec<D>& at_i, const Vec<D>& at_j,
-                         const Vec<D>& impulse) {
-    Row<N> row{static_cast<double>(i), static_cast<double>(j)};
-    put_row<D, N>(row, 2, at_i);
-    put_row<D, N>(row, 2 + D, at_j);
-    put_row<D, N>(row, 2 + 2 * D, impulse);
+  const auto row_of = [](const PairImpulse<D>& t) {
+    Row<N> row{static_cast<double>(t.i), static_cast<double>(t.j)};
+    put_row<D, N>(row, 2, t.position_i);
+    put_row<D, N>(row, 2 + D, t.position_j);
+    put_row<D, N>(row, 2 + 2 * D, t.impulse);
     return row;
   };
   const auto take = [&](const Row<N>& r) {
@@ -487,32 +520,53 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
   };
   for_each_in_whole_order<Row<N>>(
       [&](std::size_t i, auto emit) {
-        for_each_contact_of(
-            i,
-            [&](std::size_t j, std::uint32_t k, const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-              const Vec<D> at_j = x[i] - space_.separation(x[i], x[j]);
-              if (region != nullptr && !region->holds_transfer<D>(x[i], at_j)) return;
-              Vec<D> shear = pass_.history().of(k);  // a copy: sampling must not advance it
-              const Vec<D> f = law_.force(g, v_rel, shear);
-              emit(row_of(id[i], id[j], x[i], at_j, elapsed * f));
-            },
-            [](std::uint32_t) {});
+        contact_transfers_of(i, elapsed, region, [&](const PairImpulse<D>& t) { emit(row_of(t)); });
       },
       take, Joined::kOnRank0);
   if (plate_)
     for_each_in_whole_order<Row<N>>(
         [&](std::size_t i, auto emit) {
-          plate_->contact(
-              x[i], radius_of(p_.radius(), i), p_.velocity()[i], p_.spin()[i],
-              [&](const ContactGeometry<D>& g, const Vec<D>& v_rel) {
-                const Vec<D> image = plate_->mirror(x[i]);
-                if (region != nullptr && !region->holds_transfer<D>(x[i], image)) return;
-                const Vec<D> f = plate_->force(i, g, v_rel);
-                emit(row_of(id[i], kPlateId, x[i], image, elapsed * f));
-              },
-              [] {});
+          plate_transfer_of(i, elapsed, region, [&](const PairImpulse<D>& t) { emit(row_of(t)); });
         },
         take, Joined::kOnRank0);
+}
+
+// Over ranks each rank hands its sampler the grains it owns that `region` holds, every target
+// grain it holds (the sampler tells target grains by id, and a contact with one may be listed
+// on any rank that holds it), and the transfers it lists: each contact on one rank, as the
+// gather of collect_transfers_in would list it, so the sampler's sums, joined, are those of
+// one process.
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::sample_own(const SampleRegion& region, bool transfers,
+                                                    double elapsed, OwnSampler<D>& sampler) {
+  if (!over_ranks()) return Simulator<D>::sample_own(region, transfers, elapsed, sampler);
+  own_sample_.clear();
+  const auto kind = p_.kind();
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    if (!(owned_[i] || kind[i] == GrainKind::kWall) ||
+        !region.holds_grain<D>(p_.position()[i], p_.radius()[i], kind[i]))
+      continue;
+    own_sample_.add(p_.id()[i], kind[i], p_.position()[i], p_.velocity()[i], p_.radius()[i],
+                    p_.mass()[i]);
+    own_sample_.spin().back() = p_.spin()[i];
+  }
+  std::vector<PairImpulse<D>> own_transfers;
+  if (transfers) {
+    const double covered = time() - last_collect_time_;
+    last_collect_time_ = time();
+    const auto take = [&](const PairImpulse<D>& t) { own_transfers.push_back(t); };
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      if (owned_[i]) contact_transfers_of(i, covered, &region, take);
+    if (plate_)
+      for (std::size_t i = 0; i < p_.size(); ++i)
+        if (owned_[i]) plate_transfer_of(i, covered, &region, take);
+  }
+  sampler.sample(own_sample_, own_transfers, elapsed);
+}
+
+template <int D, class Law, bool kMono, class Space>
+void DemSimulator<D, Law, kMono, Space>::join_samples(OwnSampler<D>& sampler) {
+  if (over_ranks()) sampler.join(domain_->team());
 }
 
 // Each grain's total force from all its contacts here, in list order as on one rank, then the

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <random>
 #include <span>
@@ -21,6 +22,7 @@
 
 #include "../common/raw_state.hpp"
 #include "analysis/checkpoint_file.hpp"
+#include "analysis/field_accumulator.hpp"
 #include "core/archive_shares.hpp"
 #include "core/jet_geometry.hpp"
 #include "core/rank_team.hpp"
@@ -316,19 +318,33 @@ TEST(Ranks, AContactAcrossRanksKeepsItsHistory) {
   }
 }
 
+// jet3d of 2,000 grains on a 14-d target at t = 3, on one rank and over the ranks, and its
+// front: the lowest jet grain's height, with the impact's contacts just above it.
+struct JetAtItsFront {
+  std::unique_ptr<Simulator<3>> one, spread;
+  double front = INFINITY;
+};
+JetAtItsFront jet_at_its_front() {
+  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
+                                 {"jet.grains=2000", "wall.diameter=14"});
+  JetAtItsFront jet{dem::make_dem_simulator<3>(scene),
+                    dem::make_dem_simulator<3>(scene, RankTeam::world())};
+  jet.one->advance_to(3.0);
+  jet.spread->advance_to(3.0);
+  const Particles<3>& p = jet.one->particles();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind()[i] == GrainKind::kFree)
+      jet.front = std::min(jet.front, p.position()[i][kJetAxis<3>]);
+  return jet;
+}
+
 // A look at part of the run (an analysis sample, core/sample_region.hpp) gets on rank 0 exactly
 // the one-rank run's grains and transfers that the region holds, in its order, and nothing
 // elsewhere; particles() afterwards is the whole again. First the grains beyond a distance from
 // the jet axis (outside the analysis window), then those and the contacts in a cylinder about
 // it, cut across the jet's front (the window's bins).
 TEST(Ranks, ASampleRegionGetsTheOneRankRunsGrainsAndTransfersInIt) {
-  const RankTeam world = RankTeam::world();
-  const Scene scene = load_scene(std::string(GRANJET_SCENES_DIR) + "/jet3d.ini",
-                                 {"jet.grains=2000", "wall.diameter=14"});
-  auto one = dem::make_dem_simulator<3>(scene);
-  auto spread = dem::make_dem_simulator<3>(scene, world);
-  one->advance_to(3.0);
-  spread->advance_to(3.0);
+  const auto [one, spread, front] = jet_at_its_front();
   const Particles<3>& whole = one->particles();
   const auto across = [](Vec<3> x) {
     x[kJetAxis<3>] = 0.0;
@@ -352,10 +368,6 @@ TEST(Ranks, ASampleRegionGetsTheOneRankRunsGrainsAndTransfersInIt) {
   }
   expect_held({.beyond = radius}, "the grains beyond r = 4");
 
-  double front = INFINITY;  // the lowest jet grain
-  for (std::size_t i = 0; i < whole.size(); ++i)
-    if (whole.kind()[i] == GrainKind::kFree)
-      front = std::min(front, whole.position()[i][kJetAxis<3>]);
   const SampleRegion cylinder{.within = 2.5, .low = front - 1.0, .high = front + 1.5};
   expect_held(cylinder, "the grains at the front");
   std::vector<PairImpulse<3>> all, expected, got;
@@ -370,6 +382,39 @@ TEST(Ranks, ASampleRegionGetsTheOneRankRunsGrainsAndTransfersInIt) {
   else
     EXPECT_TRUE(got.empty());
   expect_whole_on_rank0(raw_state(whole), raw_state(spread->particles()), "then all grains");
+}
+
+// The inline analysis' bins over ranks (Simulator::sample_own, join_samples): each rank sums the
+// grains it owns and the contacts it lists, the join brings every rank's sums to rank 0, and
+// rank 0's fields are the one-rank run's, bit for bit; the other ranks are left with none.
+TEST(Ranks, EachRankSumsItsOwnBinsAndTheJoinIsTheOneRankRuns) {
+  const auto [one, spread, front] = jet_at_its_front();
+  const analysis::BinSpec spec{4.0, front - 0.5, 4, 2, 1.5};  // straddling the contacts
+  analysis::FieldAccumulator<3> alone(spec), mine(spec);
+  for (double t : {3.0, 3.5, 4.0}) {
+    one->advance_to(t);
+    spread->advance_to(t);
+    const double elapsed = t == 3.0 ? 0.0 : 0.5;
+    one->sample_own(alone.reach(), true, elapsed, alone);
+    spread->sample_own(alone.reach(), true, elapsed, mine);
+  }
+  spread->join_samples(mine);
+  const analysis::Table expected = alone.fields({}), got = mine.fields({});
+  ASSERT_EQ(expected.names(), got.names());
+  int finite = 0;
+  for (const std::string& name : expected.names())
+    for (std::size_t bin = 0; bin < expected.rows(); ++bin) {
+      const double a = expected.at(bin, name), b = got.at(bin, name);
+      if (name == "n") EXPECT_GT(a, 0.0) << "bin " << bin << " holds no grain";
+      finite += std::isfinite(a);
+      if (on_rank0())
+        EXPECT_TRUE(std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)))
+            << name << " in bin " << bin << ": " << a << " against " << b;
+      else if (name == "n")
+        EXPECT_EQ(b, 0.0) << "bin " << bin << " after the join";
+    }
+  EXPECT_GT(finite, static_cast<int>(expected.rows() * expected.names().size() / 2));
+  EXPECT_GT(alone.fields({}).at(0, "contact_density"), 0.0);
 }
 
 // The bisection over ranks, of points dealt out to the ranks in turn, gives the regions that
