@@ -141,18 +141,9 @@ void FieldAccumulator<D>::join(const RankTeam& team) {
   if (team.alone()) return;
   std::vector<std::int64_t> words;
   const auto each_sum = [&](auto&& visit) {
-    for (BinSums& b : bins_)
-      for (auto* sums : {&b.count, &b.volume, &b.mass, &b.segments}) visit(*sums);
-    for (BinSums& b : bins_)
-      for (auto* sums : {&b.momentum, &b.momentum_xyz}) visit(*sums);
-    for (BinSums& b : bins_)
-      for (auto* sums : {&b.second, &b.second_xyz, &b.contact, &b.contact_xyz, &b.contact_wall,
-                         &b.contact_normal, &b.fabric})
-        visit(*sums);
-    for (HalfCellExactSums& c : half_cells_) {
-      for (auto* sums : {&c.mass, &c.lateral, &c.height}) visit(*sums);
-      visit(c.momentum);
-    }
+    const auto sums = [&](const char*, auto& s) { visit(s); };
+    for (BinSums& b : bins_) each_bin_term(sums, b);
+    for (HalfCellExactSums& c : half_cells_) each_half_cell_term(sums, c);
   };
   each_sum([&](auto& sums) { sums.append_words(words); });
   team.sum(words);
@@ -163,15 +154,6 @@ void FieldAccumulator<D>::join(const RankTeam& team) {
     each_sum([](auto& sums) { sums = {}; });
   }
   vdf_.join(team);
-}
-
-template <int D>
-auto FieldAccumulator<D>::values(const BinSums& s) -> BinValues {
-  return {s.count.value(),        s.volume.value(),         s.mass.value(),
-          s.momentum.value(),     s.second.value(),         s.momentum_xyz.value(),
-          s.second_xyz.value(),   s.contact.value(),        s.contact_xyz.value(),
-          s.contact_wall.value(), s.contact_normal.value(), s.fabric.value(),
-          s.segments.value()};
 }
 
 template <int D>
@@ -211,12 +193,14 @@ Table FieldAccumulator<D>::fields(const FieldOptions& options) const {
   constexpr auto& axes = Coordinates::kAxes;
   constexpr auto shear = Coordinates::kShear;
   const double d = options.diameter;
-  std::vector<HalfCellSums<D>> half_cells;
-  for (const HalfCellExactSums& c : half_cells_)
-    half_cells.push_back({c.mass.value(), c.momentum.value(), c.lateral.value(), c.height.value()});
+  const auto value_of = [](const char*, const auto& sums, auto& value) { value = sums.value(); };
+  std::vector<HalfCellSums<D>> half_cells(half_cells_.size());
+  for (std::size_t k = 0; k < half_cells.size(); ++k)
+    each_half_cell_term(value_of, half_cells_[k], half_cells[k]);
   Table t(grid.size());
   for (int bin = 0; bin < grid.size(); ++bin) {
-    const BinValues s = values(bins_[bin]);
+    BinValues s;
+    each_bin_term(value_of, bins_[bin], s);
     const double volume = coords_.bin_volume(bin);
     const double snapshots_volume = samples_ * volume;
     const double n = s.count / snapshots_volume;

@@ -87,25 +87,10 @@ class FieldAccumulator final : public OwnSampler<D> {
   template <class Visitor>
   void visit_state(Visitor& v) {
     v.each("bins", bins_, [](auto& b, BinSums& s) {
-      s.count.visit(b, "count");
-      s.volume.visit(b, "volume");
-      s.mass.visit(b, "mass");
-      s.momentum.visit(b, "momentum");
-      s.second.visit(b, "second");
-      s.momentum_xyz.visit(b, "momentum_xyz");
-      s.second_xyz.visit(b, "second_xyz");
-      s.contact.visit(b, "contact");
-      s.contact_xyz.visit(b, "contact_xyz");
-      s.contact_wall.visit(b, "contact_wall");
-      s.contact_normal.visit(b, "contact_normal");
-      s.fabric.visit(b, "fabric");
-      s.segments.visit(b, "segments");
+      each_bin_term([&](const char* name, auto& sums) { sums.visit(b, name); }, s);
     });
     v.each("half_cells", half_cells_, [](auto& c, HalfCellExactSums& h) {
-      h.mass.visit(c, "mass");
-      h.momentum.visit(c, "momentum");
-      h.lateral.visit(c, "lateral");
-      h.height.visit(c, "height");
+      each_half_cell_term([&](const char* name, auto& sums) { sums.visit(c, name); }, h);
     });
     auto vdf = v.nested("vdf");
     vdf_.visit_state(vdf);
@@ -135,14 +120,40 @@ class FieldAccumulator final : public OwnSampler<D> {
   };
   using BinSums = BinTerms<ExactSums<double>, ExactSums<Vec<D>>, ExactSums<Mat>>;
   using BinValues = BinTerms<double, Vec<D>, Mat>;  // what BinSums add up to
-  static BinValues values(const BinSums& s);
-  void sample_transfers(std::span<const PairImpulse<D>> transfers);
 
-  struct HalfCellExactSums {
+  struct HalfCellExactSums {  // HalfCellSums<D> (analysis/strain_rate.hpp), exactly
     ExactSums<double> mass;
     ExactSums<Vec<D>> momentum;
     ExactSums<double> lateral, height;
   };
+
+  // The members of one or more BinTerms (or half-cells) side by side, each with its name in
+  // checkpoints: visit(name, the member of each). One list for checkpoints, joins and values.
+  template <class Visit, class... Terms>
+  static void each_bin_term(Visit&& visit, Terms&... t) {
+    visit("count", t.count...);
+    visit("volume", t.volume...);
+    visit("mass", t.mass...);
+    visit("momentum", t.momentum...);
+    visit("second", t.second...);
+    visit("momentum_xyz", t.momentum_xyz...);
+    visit("second_xyz", t.second_xyz...);
+    visit("contact", t.contact...);
+    visit("contact_xyz", t.contact_xyz...);
+    visit("contact_wall", t.contact_wall...);
+    visit("contact_normal", t.contact_normal...);
+    visit("fabric", t.fabric...);
+    visit("segments", t.segments...);
+  }
+  template <class Visit, class... Cells>
+  static void each_half_cell_term(Visit&& visit, Cells&... c) {
+    visit("mass", c.mass...);
+    visit("momentum", c.momentum...);
+    visit("lateral", c.lateral...);
+    visit("height", c.height...);
+  }
+
+  void sample_transfers(std::span<const PairImpulse<D>> transfers);
 
   // Whether partner `id` is a target (wall) grain or the plate (kPlateId, the only negative id).
   bool is_wall(GrainId id) const {

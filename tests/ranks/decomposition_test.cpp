@@ -405,13 +405,16 @@ TEST(Ranks, EachRankSumsItsOwnBinsAndTheJoinIsTheOneRankRuns) {
   for (const std::string& name : expected.names())
     for (std::size_t bin = 0; bin < expected.rows(); ++bin) {
       const double a = expected.at(bin, name), b = got.at(bin, name);
-      if (name == "n") EXPECT_GT(a, 0.0) << "bin " << bin << " holds no grain";
+      if (name == "n") {
+        EXPECT_GT(a, 0.0) << "bin " << bin << " holds no grain";
+      }
       finite += std::isfinite(a);
-      if (on_rank0())
+      if (on_rank0()) {
         EXPECT_TRUE(std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)))
             << name << " in bin " << bin << ": " << a << " against " << b;
-      else if (name == "n")
+      } else if (name == "n") {
         EXPECT_EQ(b, 0.0) << "bin " << bin << " after the join";
+      }
     }
   EXPECT_GT(finite, static_cast<int>(expected.rows() * expected.names().size() / 2));
   EXPECT_GT(alone.fields({}).at(0, "contact_density"), 0.0);
