@@ -45,7 +45,7 @@ void InlineAnalysis<D>::observe(Simulator<D>& sim) {
   // The bins' grains and transfers: over ranks each rank sums its own, joined at checkpoints
   // and at the end (join_samples).
   if (const std::optional<double> elapsed = analysis_.book_window(time, true))
-    sim.sample_own(analysis_.bins_region(), true, *elapsed, analysis_.bins());
+    sim.sample_own(analysis_.bins_region(), *elapsed, analysis_.bins());
   analysis_.schedule_after(time);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

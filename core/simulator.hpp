@@ -156,13 +156,12 @@ class Simulator {
     (void)region;
     collect_transfers(out);
   }
-  // Hands `sampler` the grains `region` holds and, with `transfers`, collect_transfers_in's
-  // (covering `elapsed`). Over MPI ranks each rank hands its own sampler its own grains and
-  // contacts, with no gather (collective); alone, all of them.
-  virtual void sample_own(const SampleRegion& region, bool transfers, double elapsed,
-                          OwnSampler<D>& sampler) {
+  // Hands `sampler` the grains `region` holds and collect_transfers_in's (covering `elapsed`).
+  // Over MPI ranks each rank hands its own sampler its own grains and contacts, with no gather
+  // (collective); alone, all of them.
+  virtual void sample_own(const SampleRegion& region, double elapsed, OwnSampler<D>& sampler) {
     std::vector<PairImpulse<D>> collected;
-    if (transfers) collect_transfers_in(collected, region);
+    collect_transfers_in(collected, region);
     sampler.sample(particles_in(region), collected, elapsed);
   }
   // Over MPI ranks: every rank's sampler joins onto rank 0's (collective). Alone: nothing.

@@ -45,10 +45,9 @@ enum class RankOrder : int {
 
 struct RankCall {
   RankOrder order = RankOrder::kDone;
-  double value = 0.0;      // advance_to's time, checkpoint_share's rank, sample_own's elapsed
-  SampleRegion region;     // particles_in's, collect_transfers_in's and sample_own's
-  FrameAsk frame;          // frame's
-  bool transfers = false;  // sample_own's
+  double value = 0.0;   // advance_to's time, checkpoint_share's rank, sample_own's elapsed
+  SampleRegion region;  // particles_in's, collect_transfers_in's and sample_own's
+  FrameAsk frame;       // frame's
 };
 
 // A follower's frame sink: only rank 0 hears of a frame.
@@ -115,10 +114,9 @@ class RankLeader final : public Simulator<D> {
     call(RankOrder::kTransfersIn, 0.0, region);
     sim_->collect_transfers_in(out, region);
   }
-  void sample_own(const SampleRegion& region, bool transfers, double elapsed,
-                  OwnSampler<D>& sampler) override {
-    call(RankOrder::kSampleOwn, elapsed, region, {}, transfers);
-    sim_->sample_own(region, transfers, elapsed, sampler);
+  void sample_own(const SampleRegion& region, double elapsed, OwnSampler<D>& sampler) override {
+    call(RankOrder::kSampleOwn, elapsed, region);
+    sim_->sample_own(region, elapsed, sampler);
   }
   void join_samples(OwnSampler<D>& sampler) override {
     call(RankOrder::kJoinSamples);
@@ -160,8 +158,8 @@ class RankLeader final : public Simulator<D> {
 
  private:
   void call(RankOrder order, double value = 0.0, const SampleRegion& region = {},
-            const FrameAsk& frame = {}, bool transfers = false) const {
-    RankCall c{order, value, region, frame, transfers};
+            const FrameAsk& frame = {}) const {
+    RankCall c{order, value, region, frame};
     ranks_.broadcast(c);
   }
 
@@ -215,7 +213,7 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
         break;
       }
       case RankOrder::kSampleOwn:
-        sim.sample_own(c.region, c.transfers, c.value, own_sampler(sampler));
+        sim.sample_own(c.region, c.value, own_sampler(sampler));
         break;
       case RankOrder::kJoinSamples:
         sim.join_samples(own_sampler(sampler));

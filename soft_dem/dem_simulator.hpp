@@ -58,8 +58,7 @@ class DemSimulator final : public Simulator<D> {
   double travel() const override { return travelled_ + travel_; }
   void collect_transfers(std::vector<PairImpulse<D>>& out) override;
   void collect_transfers_in(std::vector<PairImpulse<D>>& out, const SampleRegion& region) override;
-  void sample_own(const SampleRegion& region, bool transfers, double elapsed,
-                  OwnSampler<D>& sampler) override;
+  void sample_own(const SampleRegion& region, double elapsed, OwnSampler<D>& sampler) override;
   void join_samples(OwnSampler<D>& sampler) override;
   SimStats stats() const override;
   bool has_contact_forces() const override { return true; }

@@ -537,9 +537,9 @@ void DemSimulator<D, Law, kMono, Space>::collect_transfers_over_ranks(
 // gather of collect_transfers_in would list it, so the sampler's sums, joined, are those of
 // one process.
 template <int D, class Law, bool kMono, class Space>
-void DemSimulator<D, Law, kMono, Space>::sample_own(const SampleRegion& region, bool transfers,
-                                                    double elapsed, OwnSampler<D>& sampler) {
-  if (!over_ranks()) return Simulator<D>::sample_own(region, transfers, elapsed, sampler);
+void DemSimulator<D, Law, kMono, Space>::sample_own(const SampleRegion& region, double elapsed,
+                                                    OwnSampler<D>& sampler) {
+  if (!over_ranks()) return Simulator<D>::sample_own(region, elapsed, sampler);
   own_sample_.clear();
   const auto kind = p_.kind();
   for (std::size_t i = 0; i < p_.size(); ++i) {
@@ -551,16 +551,14 @@ void DemSimulator<D, Law, kMono, Space>::sample_own(const SampleRegion& region, 
     own_sample_.spin().back() = p_.spin()[i];
   }
   std::vector<PairImpulse<D>> own_transfers;
-  if (transfers) {
-    const double covered = time() - last_collect_time_;
-    last_collect_time_ = time();
-    const auto take = [&](const PairImpulse<D>& t) { own_transfers.push_back(t); };
+  const double covered = time() - last_collect_time_;
+  last_collect_time_ = time();
+  const auto take = [&](const PairImpulse<D>& t) { own_transfers.push_back(t); };
+  for (std::size_t i = 0; i < p_.size(); ++i)
+    if (owned_[i]) contact_transfers_of(i, covered, &region, take);
+  if (plate_)
     for (std::size_t i = 0; i < p_.size(); ++i)
-      if (owned_[i]) contact_transfers_of(i, covered, &region, take);
-    if (plate_)
-      for (std::size_t i = 0; i < p_.size(); ++i)
-        if (owned_[i]) plate_transfer_of(i, covered, &region, take);
-  }
+      if (owned_[i]) plate_transfer_of(i, covered, &region, take);
   sampler.sample(own_sample_, own_transfers, elapsed);
 }
 

@@ -395,8 +395,8 @@ TEST(Ranks, EachRankSumsItsOwnBinsAndTheJoinIsTheOneRankRuns) {
     one->advance_to(t);
     spread->advance_to(t);
     const double elapsed = t == 3.0 ? 0.0 : 0.5;
-    one->sample_own(alone.reach(), true, elapsed, alone);
-    spread->sample_own(alone.reach(), true, elapsed, mine);
+    one->sample_own(alone.reach(), elapsed, alone);
+    spread->sample_own(alone.reach(), elapsed, mine);
   }
   spread->join_samples(mine);
   const analysis::Table expected = alone.fields({}), got = mine.fields({});
