@@ -58,11 +58,14 @@ class Copier {
   // particles group by one).
   void make_references() {
     for (const Reference& r : references_) {
-      std::vector<hobj_ref_t> refs(r.targets.size());
-      for (std::size_t k = 0; k < refs.size(); ++k)
-        out_.check(H5Rcreate(&refs[k], to_, r.targets[k].c_str(), H5R_OBJECT, -1), "refer to",
-                   r.targets[k]);
       const std::string what = r.object + " attribute " + r.name;
+      std::vector<hobj_ref_t> refs(r.targets.size());
+      for (std::size_t k = 0; k < refs.size(); ++k) {
+        const auto target = copied_.find(r.targets[k]);
+        if (target == copied_.end()) in_.fail("follow (it leads to an object left out)", what);
+        out_.check(H5Rcreate(&refs[k], to_, target->second.c_str(), H5R_OBJECT, -1), "refer to",
+                   target->second);
+      }
       if (H5Aexists_by_name(to_, r.object.c_str(), r.name.c_str(), H5P_DEFAULT) > 0)
         out_.check(H5Adelete_by_name(to_, r.object.c_str(), r.name.c_str(), H5P_DEFAULT), "replace",
                    what);
@@ -146,10 +149,13 @@ class Copier {
   struct Reference {
     std::string object, name;
     std::vector<hsize_t> shape;
-    std::vector<std::string> targets;  // paths in the source, the same in the copy
+    std::vector<haddr_t> targets;  // addresses in the source, of objects copied (copied_)
   };
 
-  // The object references among the attributes of `object`, by the paths they point to.
+  // The object references among the attributes of `object`, by the addresses they point to.
+  // Each is opened by its address: finding its path instead (H5Rget_name) searches the whole
+  // file, and fails on a group a kill left half-written, which the copy may be there to leave
+  // out (H5mdFile::drop_fields_and_analysis).
   void note_references(hid_t object, const std::string& path) {
     each_attribute(object, path, [&](const Attribute& a) {
       if (H5Tget_class(a.type.get()) != H5T_REFERENCE) return;
@@ -162,11 +168,11 @@ class Copier {
       r.shape.resize(static_cast<std::size_t>(std::max(rank, 0)));
       if (rank > 0) H5Sget_simple_extent_dims(a.space.get(), r.shape.data(), nullptr);
       for (hobj_ref_t& ref : refs) {
-        const ssize_t length = H5Rget_name(from_, H5R_OBJECT, &ref, nullptr, 0);
-        if (length <= 0) in_.fail("follow", what);
-        std::vector<char> target(static_cast<std::size_t>(length) + 1);
-        H5Rget_name(from_, H5R_OBJECT, &ref, target.data(), target.size());
-        r.targets.emplace_back(target.data());
+        const H5Handle target = in_.own(H5Rdereference2(from_, H5P_DEFAULT, H5R_OBJECT, &ref),
+                                        H5Oclose, "follow", what);
+        H5O_info_t info;
+        in_.check(H5Oget_info(target.get(), &info), "follow", what);
+        r.targets.push_back(info.addr);
       }
       references_.push_back(std::move(r));
     });

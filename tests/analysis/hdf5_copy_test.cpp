@@ -8,6 +8,7 @@
 #include <hdf5.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -151,6 +152,60 @@ TEST(Hdf5Copy, KeepsAttributesAndLinksAndNeverOpensTheLeftOutGroups) {
     EXPECT_NE(std::string(e.what()).find("/analysis"), std::string::npos) << e.what();
   }
   EXPECT_THROW(copy_hdf5_except(dir / "none.h5", dir / "copy.h5", {}), InputError);
+  fs::remove_all(dir);
+}
+
+// A group that a kill left half-written, its object header garbled, as a run killed while it
+// stored its fields leaves it: the copy leaves it out and never reads it, also when it makes
+// again an object reference elsewhere in the file (finding the referenced object's path by a
+// search of the whole file would read the garbled header on the way).
+TEST(Hdf5Copy, MakesReferencesAgainPastAGarbledGroupItLeavesOut) {
+  const fs::path dir = fs::temp_directory_path() / "granjet_hdf5_copy_garbled";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path source = dir / "run.h5";
+  {
+    const hid_t f = H5Fcreate(source.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    for (const char* group : {"/connectivity", "/fields", "/particles"})
+      H5Gclose(H5Gcreate2(f, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    dataset(f, "/fields/n", {1.0, 2.0});
+    dataset(f, "/particles/x", {0.5});
+    hobj_ref_t ref;
+    H5Rcreate(&ref, f, "/particles", H5R_OBJECT, -1);
+    const hid_t scalar = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate_by_name(f, "/connectivity", "particles_group", H5T_STD_REF_OBJ,
+                                      scalar, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, H5T_STD_REF_OBJ, &ref);
+    H5Aclose(a);
+    H5Sclose(scalar);
+    H5Fclose(f);
+  }
+  const hid_t before = H5Fopen(source.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const haddr_t fields = address(before, "/fields");
+  H5Fclose(before);
+  {
+    std::fstream garble(source, std::ios::in | std::ios::out | std::ios::binary);
+    garble.seekp(static_cast<std::streamoff>(fields));
+    const std::string junk(64, '\xff');
+    garble.write(junk.data(), static_cast<std::streamsize>(junk.size()));
+  }
+  copy_hdf5_except(source, dir / "copy.h5", {"fields"});
+
+  const hid_t f = H5Fopen((dir / "copy.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(H5Lexists(f, "/fields", H5P_DEFAULT), 0);
+  EXPECT_EQ(read_dataset(f, "/particles/x"), (std::vector<double>{0.5}));
+  hobj_ref_t ref;
+  const hid_t a = H5Aopen_by_name(f, "/connectivity", "particles_group", H5P_DEFAULT, H5P_DEFAULT);
+  H5Aread(a, H5T_STD_REF_OBJ, &ref);
+  H5Aclose(a);
+  const hid_t target = H5Rdereference2(f, H5P_DEFAULT, H5R_OBJECT, &ref);
+  ASSERT_GE(target, 0);
+  char name[64] = {};
+  H5Iget_name(target, name, sizeof name);
+  H5Oclose(target);
+  EXPECT_STREQ(name, "/particles");
+  H5Fclose(f);
   fs::remove_all(dir);
 }
 
