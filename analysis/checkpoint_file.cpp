@@ -156,10 +156,14 @@ StateArchive read_checkpoint_file(const std::filesystem::path& checkpoint, Share
   if (!archive.contains(kRanks)) return archive;  // whole
   const std::int64_t ranks = archive.integer(kRanks);
   // Reader `reader` takes the shares s with s * readers / ranks == reader, in rank order; every
-  // share holds the same entries, so one with none takes share 0's, empty.
+  // share holds the same entries, so one with none takes share 0's, empty. The archive knows
+  // them as shares (StateReader::in_share).
   const std::string first = share_group(0);
-  for (const std::string& name : names)
-    if (name.starts_with(first)) read(name, archive, name.substr(first.size()), false);
+  for (const std::string& name : names) {
+    if (!name.starts_with(first)) continue;
+    read(name, archive, name.substr(first.size()), false);
+    archive.share_also(name.substr(first.size()));
+  }
   for (std::int64_t s = 0; s < ranks; ++s) {
     if (who.readers == 0 || s * who.readers / ranks != who.reader) continue;
     const std::string group = share_group(static_cast<int>(s));

@@ -42,8 +42,9 @@ struct ShareReader {
   int readers = 1;
 };
 
-// The root's entries and the shares `who` takes, joined in rank order; a split checkpoint read
-// by several readers also holds "checkpoint/readers". Throws InputError naming the file when it
+// The root's entries and the shares `who` takes, joined in rank order, the shares' entries
+// known as such (StateArchive::in_share); a split checkpoint read by several readers also holds
+// "checkpoint/readers". Throws InputError naming the file when it
 // is missing or unreadable.
 StateArchive read_checkpoint_file(const std::filesystem::path& checkpoint, ShareReader who = {});
 

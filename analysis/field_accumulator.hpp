@@ -70,9 +70,15 @@ class FieldAccumulator final : public OwnSampler<D> {
   void sample(const Particles<D>& particles, std::span<const PairImpulse<D>> transfers,
               double elapsed) override;
   // Over MPI ranks, each rank sums its own grains and contacts (Simulator::sample_own): the
-  // sums and the velocity distributions' values join onto rank 0, and the other ranks start
-  // again from none. The sample counts and times are alike on every rank and stay as they are.
+  // sums join onto rank 0, and the other ranks start again from none. Each rank keeps the
+  // velocities of its grains (a checkpoint stores them in its share); the velocity
+  // distributions' statistics join. The sample counts and times are alike on every rank and
+  // stay as they are.
   void join(const RankTeam& team) override;
+  void save_own(StateWriter& out) override { visit_own_state(out); }
+  void restore_own(StateReader& in) override {
+    if (in.nested("vdf").in_share("bin")) visit_own_state(in);
+  }
   int samples() const { return samples_; }
   double transfer_time() const { return transfer_time_; }
 
@@ -92,8 +98,7 @@ class FieldAccumulator final : public OwnSampler<D> {
     v.each("half_cells", half_cells_, [](auto& c, HalfCellExactSums& h) {
       each_half_cell_term([&](const char* name, auto& sums) { sums.visit(c, name); }, h);
     });
-    auto vdf = v.nested("vdf");
-    vdf_.visit_state(vdf);
+    visit_own_state(v);
     v("samples", samples_);
     v("transfer_samples", transfer_samples_);
     v("transfer_time", transfer_time_);
@@ -101,6 +106,13 @@ class FieldAccumulator final : public OwnSampler<D> {
   }
 
  private:
+  // What stays each rank's own after a join.
+  template <class Visitor>
+  void visit_own_state(Visitor& v) {
+    auto vdf = v.share("vdf");
+    vdf_.visit_state(vdf);
+  }
+
   // Summed over the window's snapshots and transfers, exactly (analysis/exact_sums.hpp).
   template <class Scalar, class Vector, class Matrix>
   struct BinTerms {

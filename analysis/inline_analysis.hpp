@@ -23,7 +23,13 @@ class InlineAnalysis final : public VisitingObserver<D, InlineAnalysis<D>> {
 
   double next_time(const Simulator<D>& sim) const override;
   void observe(Simulator<D>& sim) override;
-  std::string state_group() const override { return "analysis"; }
+  static constexpr const char* kStateGroup = "analysis";
+  std::string state_group() const override { return kStateGroup; }
+  // Where its bins' state lies in a checkpoint whose observers' groups lie under `observers`:
+  // there each follower rank keeps its own part of it (OwnSampler::save_own).
+  static std::string bins_state(const std::string& observers) {
+    return observers + "/" + kStateGroup + "/" + RunAnalysis<D>::kFieldsState;
+  }
   // A window that never opened (t_end before its start) measured nothing: no all-NaN fields,
   // and a line that says so.
   std::string store(const std::filesystem::path& file, const std::filesystem::path& published_as,

@@ -181,13 +181,12 @@ RunResult RunAnalysis<D>::finish() const {
   r.global.set("window_start", 0, config_.window_start);
   r.global.set("window_end", 0, config_.window_end);
 
-  const int nv = config_.vdf_bins;
-  std::vector<double> edges(nv + 1);
-  for (int k = 0; k <= nv; ++k) edges[k] = config_.vdf_range * (2.0 * k / nv - 1.0);
+  const int nv = VelocityDistribution<D>::kIntervals;
+  const std::vector<double> edges = VelocityDistribution<D>::density_edges();
   r.vdf = Table(nv);
   for (int k = 0; k < nv; ++k) r.vdf.set("c", k, 0.5 * (edges[k] + edges[k + 1]));
   for (int a = 0; a < D; ++a) {
-    const std::vector<double> density = vdf.density(a, edges);
+    const std::vector<double> density = vdf.density(a);
     for (int k = 0; k < nv; ++k)
       r.vdf.set("density." + std::string(Coordinates::kAxes[a]), k, density[k]);
   }

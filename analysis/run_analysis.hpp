@@ -49,8 +49,6 @@ struct AnalysisConfig {
   // The exit angle of an ideal fluid jet on the same plate (model §7b), for 2D plate targets;
   // NaN otherwise.
   double free_streamline_psi0 = std::numeric_limits<double>::quiet_NaN();
-  int vdf_bins = 48;  // histogram of scaled velocities over [-vdf_range, vdf_range]
-  double vdf_range = 6.0;
   int azimuth_bins = 36;
 
   // The mesh and window of the scene's [analysis] section (the study's, model §5-§6, in the
@@ -115,10 +113,12 @@ class RunAnalysis {
   const FieldAccumulator<D>& field_accumulator() const { return fields_; }
   const ScatteringMeasurement<D>& scattering() const { return scattering_; }
 
-  // Checkpoints: what the samples so far have summed and when the next is due.
+  // Checkpoints: what the samples so far have summed and when the next is due; the bins' state
+  // in the group kFieldsState.
+  static constexpr const char* kFieldsState = "fields";
   template <class Visitor>
   void visit_state(Visitor& v) {
-    auto fields = v.nested("fields");
+    auto fields = v.nested(kFieldsState);
     fields_.visit_state(fields);
     auto scattering = v.nested("scattering");
     scattering_.visit_state(scattering);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/exact_sum.hpp"
@@ -9,93 +10,145 @@
 namespace granjet::analysis {
 namespace {
 
-// <x^4>/<x^2>^2 of values of zero mean (flatness is blind to their scale); NaN without values.
-// Exact sums: the same bits in any order of the values.
-double fourth_over_second_squared(const std::vector<double>& x) {
-  if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
-  ExactSum x2, x4;
-  for (double v : x) {
-    x2.add(v * v);
-    x4.add(v * v * v * v);
+// Counts and exact sums added up over the ranks, in place, on every rank: as integers, so the
+// result is that of all the ranks' terms in one process.
+void sum_over(const RankTeam& team, std::span<std::int64_t> counts, std::span<ExactSum> sums) {
+  if (team.alone()) return;
+  std::vector<std::int64_t> words(counts.begin(), counts.end());
+  for (ExactSum& s : sums) {
+    const std::span<std::int64_t> w = s.words();
+    words.insert(words.end(), w.begin(), w.end());
   }
-  const double second = x2.value() / x.size(), fourth = x4.value() / x.size();
-  return fourth / (second * second);
+  team.sum(words);
+  std::copy_n(words.begin(), counts.size(), counts.begin());
+  std::span<const std::int64_t> rest = std::span<const std::int64_t>(words).subspan(counts.size());
+  for (ExactSum& s : sums) {
+    const std::size_t n = s.words().size();
+    s = ExactSum::of_words(rest.first(n));
+    rest = rest.subspan(n);
+  }
 }
+
+// The powers of values of zero mean that <x^4>/<x^2>^2 needs (flatness is blind to their scale).
+struct Powers {
+  ExactSum second, fourth;
+  void add(double x) {
+    second.add(x * x);
+    fourth.add(x * x * x * x);
+  }
+  // NaN without values.
+  double flatness(std::int64_t count) const {
+    if (count == 0) return std::numeric_limits<double>::quiet_NaN();
+    const double n = static_cast<double>(count);
+    const double s = second.value() / n, f = fourth.value() / n;
+    return f / (s * s);
+  }
+};
 
 }  // namespace
 
 template <int D>
-typename VelocityDistribution<D>::BinMoments VelocityDistribution<D>::moments(int component) const {
-  std::vector<double> count(bins_, 0.0);
-  std::vector<ExactSum> sum(bins_), squares(bins_);
-  for (std::size_t k = 0; k < bin_.size(); ++k) {
-    const double v = velocity_[k][component];
-    count[bin_[k]] += 1.0;
-    sum[bin_[k]].add(v);
-    squares[bin_[k]].add(v * v);
-  }
-  BinMoments m{std::vector<double>(bins_), std::vector<double>(bins_)};
-  for (int b = 0; b < bins_; ++b) {
-    m.mean[b] = count[b] > 0.0 ? sum[b].value() / count[b] : 0.0;
-    // The population deviation, so each bin's scaled values have exactly unit variance.
-    const double var = count[b] > 1.0 ? squares[b].value() / count[b] - m.mean[b] * m.mean[b] : 0.0;
-    m.sd[b] = std::sqrt(std::max(var, 0.0));
-  }
-  return m;
+std::vector<double> VelocityDistribution<D>::density_edges() {
+  std::vector<double> edges(kIntervals + 1);
+  for (int k = 0; k <= kIntervals; ++k) edges[k] = kRange * (2.0 * k / kIntervals - 1.0);
+  return edges;
 }
 
 template <int D>
 void VelocityDistribution<D>::join(const RankTeam& team) {
-  if (team.alone()) return;
-  std::vector<double> mine;
-  mine.reserve(D * velocity_.size());
-  for (const Vec<D>& v : velocity_) mine.insert(mine.end(), v.data(), v.data() + D);
-  bin_ = team.gather<int>(bin_);  // rank 0: all of them; the others: none
-  const std::vector<double> all = team.gather<double>(mine);
-  velocity_.resize(all.size() / D);
-  for (std::size_t k = 0; k < velocity_.size(); ++k)
-    for (int d = 0; d < D; ++d) velocity_[k][d] = all[D * k + d];
+  statistics_ = statistics(team);
 }
 
 template <int D>
-std::vector<double> VelocityDistribution<D>::scaled(int component, int bin) const {
-  const BinMoments m = moments(component);
-  std::vector<double> out;
+auto VelocityDistribution<D>::current() const -> const Statistics& {
+  if (!statistics_) statistics_ = statistics(RankTeam());
+  return *statistics_;
+}
+
+template <int D>
+auto VelocityDistribution<D>::statistics(const RankTeam& team) const -> Statistics {
+  const auto at = [&](int component, int bin) { return component * bins_ + bin; };
+  // Each bin's mean and population deviation, so each bin's scaled values have exactly unit
+  // variance.
+  std::vector<std::int64_t> count(bins_, 0);
+  std::vector<ExactSum> moments(2 * D * bins_);  // per component and bin: sum, sum of squares
+  for (std::size_t k = 0; k < bin_.size(); ++k) {
+    ++count[bin_[k]];
+    for (int a = 0; a < D; ++a) {
+      const double v = velocity_[k][a];
+      moments[2 * at(a, bin_[k])].add(v);
+      moments[2 * at(a, bin_[k]) + 1].add(v * v);
+    }
+  }
+  sum_over(team, count, moments);
+  std::vector<double> mean(D * bins_, 0.0), sd(D * bins_, 0.0);
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < bins_; ++b) {
+      const double n = static_cast<double>(count[b]);
+      const int i = at(a, b);
+      mean[i] = n > 0.0 ? moments[2 * i].value() / n : 0.0;
+      const double var = n > 1.0 ? moments[2 * i + 1].value() / n - mean[i] * mean[i] : 0.0;
+      sd[i] = std::sqrt(std::max(var, 0.0));
+    }
+
+  // Per component: each bin's scaled values, then all of them pooled, then the region's
+  // fluctuations (one scale); their counts; the density's counts.
+  const int sets = bins_ + 2;
+  std::vector<Powers> powers(D * sets);
+  std::vector<std::int64_t> counts(D * sets + D * kIntervals, 0);
+  const std::vector<double> edges = density_edges();
   for (std::size_t k = 0; k < bin_.size(); ++k) {
     const int b = bin_[k];
-    if ((bin < 0 || b == bin) && m.sd[b] > 0.0)
-      out.push_back((velocity_[k][component] - m.mean[b]) / m.sd[b]);
+    for (int a = 0; a < D; ++a) {
+      const int i = at(a, b);
+      if (!(sd[i] > 0.0)) continue;
+      const double u = velocity_[k][a] - mean[i], c = u / sd[i];
+      for (int set : {b, bins_}) {
+        powers[a * sets + set].add(c);
+        ++counts[a * sets + set];
+      }
+      powers[a * sets + bins_ + 1].add(u);
+      ++counts[a * sets + bins_ + 1];
+      const auto it = std::upper_bound(edges.begin(), edges.end(), c);
+      if (it != edges.begin() && it != edges.end())
+        ++counts[D * sets + a * kIntervals + (it - edges.begin() - 1)];
+    }
   }
-  return out;
+  std::vector<ExactSum> sums;
+  for (const Powers& p : powers) sums.insert(sums.end(), {p.second, p.fourth});
+  sum_over(team, counts, sums);
+
+  Statistics s;
+  for (int a = 0; a < D; ++a) {
+    const auto flatness_of = [&](int set) {
+      const int i = a * sets + set;
+      return Powers{sums[2 * i], sums[2 * i + 1]}.flatness(counts[i]);
+    };
+    for (int set = 0; set <= bins_; ++set) s.flatness_bin[a].push_back(flatness_of(set));
+    s.flatness_region[a] = flatness_of(bins_ + 1);
+    const std::int64_t scaled = counts[a * sets + bins_];
+    s.density[a].assign(kIntervals, 0.0);
+    if (scaled == 0) continue;
+    for (int k = 0; k < kIntervals; ++k)
+      s.density[a][k] = static_cast<double>(counts[D * sets + a * kIntervals + k]) /
+                        (static_cast<double>(scaled) * (edges[k + 1] - edges[k]));
+  }
+  return s;
 }
 
 template <int D>
 double VelocityDistribution<D>::flatness(int component, int bin) const {
-  return fourth_over_second_squared(scaled(component, bin));
+  return current().flatness_bin[component][bin < 0 ? bins_ : bin];
 }
 
 template <int D>
 double VelocityDistribution<D>::flatness_region(int component) const {
-  const BinMoments m = moments(component);
-  std::vector<double> u;  // unscaled: one scale for all leaves the flatness as it is
-  for (std::size_t k = 0; k < bin_.size(); ++k)
-    if (m.sd[bin_[k]] > 0.0) u.push_back(velocity_[k][component] - m.mean[bin_[k]]);
-  return fourth_over_second_squared(u);
+  return current().flatness_region[component];
 }
 
 template <int D>
-std::vector<double> VelocityDistribution<D>::density(int component,
-                                                     std::span<const double> edges) const {
-  const std::vector<double> c = scaled(component);
-  std::vector<double> out(edges.size() > 0 ? edges.size() - 1 : 0, 0.0);
-  if (c.empty() || out.empty()) return out;
-  for (double x : c) {
-    const auto it = std::upper_bound(edges.begin(), edges.end(), x);
-    if (it == edges.begin() || it == edges.end()) continue;
-    out[it - edges.begin() - 1] += 1.0;
-  }
-  for (std::size_t k = 0; k < out.size(); ++k) out[k] /= c.size() * (edges[k + 1] - edges[k]);
-  return out;
+std::vector<double> VelocityDistribution<D>::density(int component) const {
+  return current().density[component];
 }
 
 template class VelocityDistribution<2>;

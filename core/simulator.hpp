@@ -122,6 +122,11 @@ class OwnSampler {
                       double elapsed) = 0;
   // Collective over `team`: rank 0 ends with every rank's samples joined, the others with none.
   virtual void join(const RankTeam& team) = 0;
+  // What a rank keeps of its own samples after a join, in its share of a checkpoint
+  // (StateWriter::share), and back on a resume: only what its shares held (StateReader::in_share),
+  // for a checkpoint that one process wrote holds it all for rank 0.
+  virtual void save_own(StateWriter& out) = 0;
+  virtual void restore_own(StateReader& in) = 0;
 };
 
 template <int D>

@@ -92,10 +92,12 @@ class StateArchive {
   // `share_prefixes`. A checkpoint stores rank 0's archive and every other rank's share beside
   // it, gathered one rank at a time (analysis/checkpoint_file.hpp); a resume joins the shares it
   // takes (append_share), so no rank ever holds the whole run.
-  void split_over(int ranks, std::vector<std::string> share_prefixes) {
+  void split_over(int ranks, const std::vector<std::string>& share_prefixes) {
     ranks_ = ranks;
-    share_prefixes_ = std::move(share_prefixes);
+    share_prefixes_.insert(share_prefixes_.end(), share_prefixes.begin(), share_prefixes.end());
   }
+  // Entries under `prefix` are each rank's own too (StateWriter::share).
+  void share_also(std::string prefix) { share_prefixes_.push_back(std::move(prefix)); }
   int ranks() const { return ranks_; }  // 1: the archive is whole
   bool in_share(const std::string& name) const {
     for (const std::string& prefix : share_prefixes_)
@@ -188,6 +190,12 @@ class StateWriter {
     }
   }
   StateWriter nested(const std::string& name) const { return {archive_, prefix_ + "/" + name}; }
+  // A member object that is each rank's own over MPI ranks: it goes in the rank's share of a
+  // checkpoint (StateArchive::split_over), not in rank 0's part that all ranks hold alike.
+  StateWriter share(const std::string& name) const {
+    archive_.share_also(prefix_ + "/" + name + "/");
+    return nested(name);
+  }
 
  private:
   StateArchive& archive_;
@@ -238,8 +246,12 @@ class StateReader {
     }
   }
   StateReader nested(const std::string& name) const { return {archive_, prefix_ + "/" + name}; }
+  StateReader share(const std::string& name) const { return nested(name); }
   // Whether the checkpoint holds `name`: an entry added after older checkpoints were written.
   bool contains(const std::string& name) const { return archive_.contains(prefix_ + "/" + name); }
+  // Whether `name` came from the ranks' shares of a split checkpoint (read_checkpoint_file),
+  // not from the part that every reader takes whole.
+  bool in_share(const std::string& name) const { return archive_.in_share(prefix_ + "/" + name); }
 
  private:
   const StateArchive& archive_;

@@ -178,10 +178,11 @@ OwnSampler<D>& own_sampler(OwnSampler<D>* sampler) {
 
 // A rank other than 0: makes each call the leader makes, until it is done. `archive`: the
 // checkpoint a resumed run restores (this rank's read of it); `sampler`: this rank's part of
-// what the leader's looks sample apart (Simulator::sample_own), if they do.
+// what the leader's looks sample apart (Simulator::sample_own), if they do, whose own state
+// lies in checkpoints under `sampler_state` (where rank 0's observer keeps the same).
 template <int D>
 void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive* archive,
-                   OwnSampler<D>* sampler) {
+                   OwnSampler<D>* sampler, const std::string& sampler_state = {}) {
   std::vector<std::byte> share;  // of the last checkpoint, until rank 0 takes it
   for (;;) {
     RankCall c;
@@ -237,6 +238,10 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
       case RankOrder::kCheckpoint: {
         StateArchive checkpoint;
         sim.checkpoint(checkpoint);
+        if (sampler != nullptr) {
+          StateWriter own(checkpoint, sampler_state);
+          sampler->save_own(own);
+        }
         share = share_bytes(checkpoint);
         break;
       }
@@ -246,6 +251,10 @@ void follow_leader(Simulator<D>& sim, const RankTeam& ranks, const StateArchive*
         break;
       case RankOrder::kRestore:
         sim.restore(*archive);
+        if (sampler != nullptr) {
+          StateReader own(*archive, sampler_state);
+          sampler->restore_own(own);
+        }
         break;
       case RankOrder::kProfile:
         rows_on_rank0(ranks, sim.profile().phase_seconds());

@@ -14,6 +14,7 @@
 #include "analysis/field_accumulator.hpp"
 #include "analysis/h5md_reader.hpp"
 #include "analysis/h5md_writer.hpp"
+#include "analysis/inline_analysis.hpp"
 #include "analysis/run_analysis.hpp"
 #include "core/errors.hpp"
 #include "core/initial_state.hpp"
@@ -345,7 +346,8 @@ void follow(const Scene& resolved, const RunOptions& options, const RankTeam& ra
     std::optional<analysis::FieldAccumulator<D>> bins;
     if (resolved.kind == SceneKind::kJet && resolved.analysis.enabled)
       bins.emplace(analysis::AnalysisConfig::for_scene(resolved).bins);
-    follow_leader<D>(*sim, ranks, resume_from, bins ? &*bins : nullptr);
+    follow_leader<D>(*sim, ranks, resume_from, bins ? &*bins : nullptr,
+                     analysis::InlineAnalysis<D>::bins_state(kObserverStates));
   } catch (const std::exception& e) {
     std::cerr << "granjet: rank " << ranks.rank() << ": " << e.what() << "\n";
     throw;

@@ -38,13 +38,16 @@ void observe_until(Simulator<D>& sim, double t_end, double half_step,
   }
 }
 
+// The group of the checkpoint that holds the observers' groups.
+inline constexpr const char* kObserverStates = "app";
+
 template <int D>
 void write_checkpoint(Simulator<D>& sim, const RunObservers<D>& observers,
                       analysis::H5mdWriter<D>& writer) {
   StateArchive archive;
   sim.checkpoint(archive);
   archive.put("app/time", sim.time());
-  const StateWriter app(archive, "app");
+  const StateWriter app(archive, kObserverStates);
   for (analysis::RunObserver<D>* o : observers) {
     StateWriter group = app.nested(o->state_group());
     o->save_state(group);
@@ -56,7 +59,7 @@ template <int D>
 void restore_checkpoint(Simulator<D>& sim, const RunObservers<D>& observers,
                         const StateArchive& archive) {
   sim.restore(archive);
-  const StateReader app(archive, "app");
+  const StateReader app(archive, kObserverStates);
   for (analysis::RunObserver<D>* o : observers) {
     StateReader group = app.nested(o->state_group());
     o->restore_state(group);

@@ -116,7 +116,8 @@ TEST_F(CheckpointFile, AMissingOrForeignOneIsAnInputErrorNamingIt) {
 }
 
 // Rank r's piece of an archive split over `ranks`: the shared entries alike on every rank (only
-// rank 0's are stored), and a share of r + 1 grains with ids 10 r .. 10 r + r.
+// rank 0's are stored), a share of r + 1 grains with ids 10 r .. 10 r + r, and an observer's
+// member of its own (StateWriter::share) holding r.
 StateArchive piece_of_rank(int r, int ranks) {
   StateArchive archive;
   archive.put("app/time", 3.0 + r);  // rank 0's must win
@@ -131,6 +132,7 @@ StateArchive piece_of_rank(int r, int ranks) {
   archive.put_reals("dem/grains/position", x);
   archive.put_reals("dem/history/shear", {});
   archive.split_over(ranks, {"dem/grains/", "dem/history/"});
+  StateWriter(archive, "app/analysis").share("own")("rank", std::vector<int>{r});
   return archive;
 }
 
@@ -159,6 +161,12 @@ TEST_F(CheckpointFile, SplitOverRanksEachReaderJoinsItsShares) {
   EXPECT_EQ(whole.real("app/time"), 3.0);
   EXPECT_EQ(whole.integer("checkpoint/ranks"), 3);
   EXPECT_FALSE(whole.contains("checkpoint/readers"));
+  // Which entries came from the shares: those a follower takes as its own.
+  EXPECT_EQ(whole.integers("app/analysis/own/rank"), (std::vector<std::int64_t>{0, 1, 2}));
+  EXPECT_TRUE(StateReader(whole, "app/analysis/own").in_share("rank"));
+  EXPECT_TRUE(StateReader(whole, "dem/grains").in_share("id"));
+  EXPECT_FALSE(StateReader(whole, "app").in_share("time"));
+  EXPECT_FALSE(StateReader(whole, "writer").in_share("frames"));
 
   // Three readers: each its own; two: the first takes shares 0 and 1 (s * 2 / 3 = 0), the
   // second share 2; five: two take none and still find every entry, empty.
@@ -179,6 +187,12 @@ TEST_F(CheckpointFile, SplitOverRanksEachReaderJoinsItsShares) {
   const StateArchive root = read_checkpoint_file(file, {0, 0});  // the writer's counts alone
   EXPECT_EQ(root.integer("writer/frames"), 7);
   EXPECT_TRUE(root.integers("dem/grains/id").empty());
+  EXPECT_TRUE(StateReader(root, "app/analysis/own").in_share("rank"));
+
+  // A whole checkpoint (one process) has no shares: every reader takes all of it alike.
+  StateArchive one = piece_of_rank(0, 1);
+  write_checkpoint_file(file, one);
+  EXPECT_FALSE(StateReader(read_checkpoint_file(file), "app/analysis/own").in_share("rank"));
 }
 
 TEST_F(CheckpointFile, AShareThatFailsToArriveKeepsTheLastOne) {

@@ -160,10 +160,20 @@ TEST(VelocityDistribution, ScaledGaussianFlatnessIsThree) {
   EXPECT_NEAR(vdf.flatness(0), 3.0, 0.25);
   EXPECT_NEAR(vdf.flatness(1), 3.0, 0.25);
   EXPECT_NEAR(vdf.flatness(0, 1), 3.0, 0.35);
-  // The density of the scaled values at 0 is 1/sqrt(2 pi) = 0.399 (bins of 0.25: the mean over
-  // the bin is 0.397; the standard error of one bin's count is 1.3%).
-  const std::vector<double> edges{-0.125, 0.125};
-  EXPECT_NEAR(vdf.density(0, edges)[0], 0.397, 0.025);
+  // The density of the scaled values at 0 is 1/sqrt(2 pi) = 0.399: over the intervals of width
+  // 0.25 on either side of it the mean is 0.395 (the standard error of one interval's count is
+  // 1.3%), and over (1, 1.25) 0.212. The intervals cover -6..6, and so all the values here.
+  const std::vector<double> edges = VelocityDistribution<2>::density_edges();
+  const std::vector<double> density = vdf.density(0);
+  ASSERT_EQ(density.size() + 1, edges.size());
+  ASSERT_EQ(edges[24], 0.0);
+  ASSERT_DOUBLE_EQ(edges[28], 1.0);
+  EXPECT_NEAR(density[23], 0.395, 0.02);
+  EXPECT_NEAR(density[24], 0.395, 0.02);
+  EXPECT_NEAR(density[28], 0.212, 0.015);
+  double inside = 0.0;
+  for (std::size_t k = 0; k < density.size(); ++k) inside += density[k] * (edges[k + 1] - edges[k]);
+  EXPECT_NEAR(inside, 1.0, 1e-12);
 }
 
 // The unit Gaussian's quantiles at (k + 1/2)/n, k = 0..n-1, by bisection on Phi(x) =

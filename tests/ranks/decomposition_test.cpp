@@ -384,12 +384,57 @@ TEST(Ranks, ASampleRegionGetsTheOneRankRunsGrainsAndTransfersInIt) {
   expect_whole_on_rank0(raw_state(whole), raw_state(spread->particles()), "then all grains");
 }
 
+// Rank 0's velocity statistics after a join, against one process's, bit for bit: the flatness
+// of each of `bins` bins and of all pooled, the region's, the density.
+void expect_same_velocity_statistics(const analysis::VelocityDistribution<3>& alone,
+                                     const analysis::VelocityDistribution<3>& joined, int bins,
+                                     const std::string& what) {
+  if (!on_rank0()) return;
+  const auto same = [](double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));
+  };
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_TRUE(std::isfinite(alone.flatness(c))) << what;
+    for (int bin = -1; bin < bins; ++bin)
+      EXPECT_TRUE(same(alone.flatness(c, bin), joined.flatness(c, bin)))
+          << what << ", component " << c << ", bin " << bin;
+    EXPECT_TRUE(same(alone.flatness_region(c), joined.flatness_region(c)))
+        << what << ", component " << c;
+    const std::vector<double> a = alone.density(c), b = joined.density(c);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k)
+      EXPECT_TRUE(same(a[k], b[k])) << what << ", component " << c << ", interval " << k;
+  }
+}
+
+// Velocities dealt out to the ranks: each keeps its own, and the join gives rank 0 the
+// statistics of all of them, bit for bit (a bin with no spread in z included).
+TEST(Ranks, VelocityDistributionsJoinTheStatisticsOfEveryRanksValues) {
+  const RankTeam world = RankTeam::world();
+  analysis::VelocityDistribution<3> all(3), mine(3);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int k = 0; k < 3000; ++k) {
+    const int bin = k % 3;
+    const Vec<3> v(1.0 + (bin + 1) * g(rng), 0.5 * g(rng) * g(rng), bin == 2 ? 0.25 : g(rng));
+    all.add(bin, v);
+    if (k % world.size() == world.rank()) mine.add(bin, v);
+  }
+  mine.join(world);
+  EXPECT_EQ(mine.size(), (3000 - world.rank() + world.size() - 1) / world.size());
+  EXPECT_TRUE(std::isnan(all.flatness(2, 2)));
+  EXPECT_GT(all.flatness(1), 4.0);  // a product of two Gaussians: flatness 9
+  expect_same_velocity_statistics(all, mine, 3, "dealt out");
+}
+
 // The inline analysis' bins over ranks (Simulator::sample_own, join_samples): each rank sums the
 // grains it owns and the contacts it lists, the join brings every rank's sums to rank 0, and
 // rank 0's fields are the one-rank run's, bit for bit; the other ranks are left with none.
+// The velocity distributions' values stay with their ranks, in a checkpoint too.
 TEST(Ranks, EachRankSumsItsOwnBinsAndTheJoinIsTheOneRankRuns) {
   const auto [one, spread, front] = jet_at_its_front();
   const analysis::BinSpec spec{4.0, front - 0.5, 4, 2, 1.5};  // straddling the contacts
+  const int spec_bins = 4 * 2;
   analysis::FieldAccumulator<3> alone(spec), mine(spec);
   for (double t : {3.0, 3.5, 4.0}) {
     one->advance_to(t);
@@ -418,6 +463,48 @@ TEST(Ranks, EachRankSumsItsOwnBinsAndTheJoinIsTheOneRankRuns) {
     }
   EXPECT_GT(finite, static_cast<int>(expected.rows() * expected.names().size() / 2));
   EXPECT_GT(alone.fields({}).at(0, "contact_density"), 0.0);
+  expect_same_velocity_statistics(alone.velocity_distribution(), mine.velocity_distribution(),
+                                  spec_bins, "joined");
+
+  // Each rank keeps its grains' velocities: a checkpoint holds them in the rank's share, and
+  // the ranks that resume from it read them back and join the same statistics.
+  const RankTeam world = RankTeam::world();
+  StateArchive own;
+  own.split_over(world.size(), {});
+  StateWriter own_writer(own, "fields");
+  mine.save_own(own_writer);
+  const std::vector<std::byte> share = share_bytes(own);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() /
+      ("granjet_ranks_bins_" + std::to_string(world.size()) + ".h5.checkpoint");
+  if (on_rank0())
+    analysis::write_checkpoint_file(file, own,
+                                    [&](int r) { return share_on_rank0(world, r, share); });
+  else
+    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, share);
+  world.any(false);  // the file is whole before any rank reads it
+  const StateArchive read = analysis::read_checkpoint_file(file, {world.rank(), world.size()});
+  world.any(false);
+  if (on_rank0()) std::filesystem::remove(file);
+  analysis::FieldAccumulator<3> resumed(spec);
+  StateReader own_reader(read, "fields");
+  resumed.restore_own(own_reader);
+  EXPECT_EQ(resumed.velocity_distribution().size(), mine.velocity_distribution().size());
+  resumed.join(world);
+  expect_same_velocity_statistics(alone.velocity_distribution(), resumed.velocity_distribution(),
+                                  spec_bins, "read back from the ranks' shares");
+
+  // A checkpoint of one process holds all of them for rank 0: the other ranks take none.
+  StateArchive whole;
+  StateWriter whole_writer(whole, "fields");
+  alone.save_own(whole_writer);
+  StateArchive as_read;  // the entries as a reader finds them: none from a share
+  for (const auto& [name, values] : whole.all_integers()) as_read.put_integers(name, values);
+  for (const auto& [name, values] : whole.all_reals()) as_read.put_reals(name, values);
+  analysis::FieldAccumulator<3> from_one(spec);
+  StateReader whole_reader(as_read, "fields");
+  from_one.restore_own(whole_reader);
+  EXPECT_EQ(from_one.velocity_distribution().size(), 0u);
 }
 
 // The bisection over ranks, of points dealt out to the ranks in turn, gives the regions that
