@@ -384,6 +384,26 @@ TEST(Ranks, ASampleRegionGetsTheOneRankRunsGrainsAndTransfersInIt) {
   expect_whole_on_rank0(raw_state(whole), raw_state(spread->particles()), "then all grains");
 }
 
+// Each rank's archive through a checkpoint file, written by rank 0 as a run's is (rank r's
+// share comes when asked for); each rank reads back its own shares. Collective.
+StateArchive through_checkpoint_file(const RankTeam& world, const StateArchive& mine,
+                                     const std::string& name) {
+  const std::vector<std::byte> share = share_bytes(mine);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() /
+      ("granjet_ranks_" + name + "_" + std::to_string(world.size()) + ".h5.checkpoint");
+  if (on_rank0())
+    analysis::write_checkpoint_file(file, mine,
+                                    [&](int r) { return share_on_rank0(world, r, share); });
+  else
+    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, share);
+  world.any(false);  // the file is whole before any rank reads it
+  StateArchive read = analysis::read_checkpoint_file(file, {world.rank(), world.size()});
+  world.any(false);
+  if (on_rank0()) std::filesystem::remove(file);
+  return read;
+}
+
 // Rank 0's velocity statistics after a join, against one process's, bit for bit: the flatness
 // of each of `bins` bins and of all pooled, the region's, the density.
 void expect_same_velocity_statistics(const analysis::VelocityDistribution<3>& alone,
@@ -473,19 +493,7 @@ TEST(Ranks, EachRankSumsItsOwnBinsAndTheJoinIsTheOneRankRuns) {
   own.split_over(world.size(), {});
   StateWriter own_writer(own, "fields");
   mine.save_own(own_writer);
-  const std::vector<std::byte> share = share_bytes(own);
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() /
-      ("granjet_ranks_bins_" + std::to_string(world.size()) + ".h5.checkpoint");
-  if (on_rank0())
-    analysis::write_checkpoint_file(file, own,
-                                    [&](int r) { return share_on_rank0(world, r, share); });
-  else
-    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, share);
-  world.any(false);  // the file is whole before any rank reads it
-  const StateArchive read = analysis::read_checkpoint_file(file, {world.rank(), world.size()});
-  world.any(false);
-  if (on_rank0()) std::filesystem::remove(file);
+  const StateArchive read = through_checkpoint_file(world, own, "bins");
   analysis::FieldAccumulator<3> resumed(spec);
   StateReader own_reader(read, "fields");
   resumed.restore_own(own_reader);
@@ -610,19 +618,7 @@ TEST(Ranks, CheckpointResumesOnAnotherRankCount) {
   const std::vector<std::byte> share = share_bytes(from_spread);
   for (int r = 1; r < world.size(); ++r) joined.append_share(share_on_rank0(world, r, share));
 
-  // The file, written by rank 0 as a run's is: rank r's share comes when asked for.
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() /
-      ("granjet_ranks_checkpoint_" + std::to_string(world.size()) + ".h5.checkpoint");
-  if (on_rank0())
-    analysis::write_checkpoint_file(file, from_spread,
-                                    [&](int r) { return share_on_rank0(world, r, share); });
-  else
-    for (int r = 1; r < world.size(); ++r) share_on_rank0(world, r, share);
-  world.any(false);  // the file is whole before any rank reads it
-  const StateArchive mine = analysis::read_checkpoint_file(file, {world.rank(), world.size()});
-  world.any(false);
-  if (on_rank0()) std::filesystem::remove(file);
+  const StateArchive mine = through_checkpoint_file(world, from_spread, "checkpoint");
   EXPECT_LT(mine.integers("dem/grains/id").size(), from_one.integers("dem/grains/id").size());
   // Some contact's partner is another rank's to read: the resume hands its history on.
   const std::vector<std::int64_t>& ids = mine.integers("dem/grains/id");
