@@ -115,21 +115,32 @@ class CellGrid {
     return q;
   }
 
-  // The neighbour cells of c that come after it in the half stencil (each cell pair once).
+  // The coordinates of the cell after the one at q (coords(c + 1) from coords(c), without
+  // the divisions: the pair loop walks every cell).
+  void next_coords(std::array<int, D>& q) const {
+    for (int d = 0; d < D && ++q[d] == dims_[d]; ++d)
+      if (d + 1 < D) q[d] = 0;
+  }
+
+  // The neighbour cells that come after cell c (at coordinates q) in the half stencil, each
+  // cell pair once: the next cell along the first axis, then each row of three cells along it
+  // whose offset in the other axes ends in +1, in the order of those offsets. visit(first, end)
+  // gets them as runs of cells consecutive in memory: a row is one run, cut where the grid
+  // ends, or split where it wraps around a periodic box.
   template <class Visit>
-  void for_each_forward_neighbour(std::size_t c, Visit&& visit) const {
-    const std::array<int, D> q = coords(c);
-    for (const auto& off : forward_offsets()) {
-      std::size_t linear = 0, stride = 1;
+  void for_each_forward_run(std::size_t c, const std::array<int, D>& q, Visit&& visit) const {
+    visit_row(c - q[0], q[0] + 1, q[0] + 1, visit);
+    for (const auto& offset : forward_rows()) {
+      std::size_t row = 0, stride = dims_[0];
       bool inside = true;
-      for (int d = 0; d < D; ++d) {
-        int k = q[d] + off[d];
+      for (int d = 1; d < D; ++d) {
+        int k = q[d] + offset[d - 1];
         if (periodic_) k = (k + dims_[d]) % dims_[d];
         inside = inside && k >= 0 && k < dims_[d];
-        linear += static_cast<std::size_t>(k) * stride;
+        row += static_cast<std::size_t>(k) * stride;
         stride *= dims_[d];
       }
-      if (inside) visit(linear);
+      if (inside) visit_row(row, q[0] - 1, q[0] + 1, visit);
     }
   }
 
@@ -249,14 +260,33 @@ class CellGrid {
     return static_cast<std::uint32_t>(linear);
   }
 
-  // Offsets in {-1,0,1}^D whose last non-zero component is +1: half of the 3^D - 1 neighbours.
-  static const std::vector<std::array<int, D>>& forward_offsets() {
-    static const std::vector<std::array<int, D>> offsets = [] {
-      std::vector<std::array<int, D>> out;
-      std::array<int, D> o;
-      for (int n = 0; n < static_cast<int>(std::pow(3, D)); ++n) {
+  // Cells first..last (inclusive) along the first axis of the row whose first cell is `row`:
+  // the part inside the grid, or each wrapped around a periodic box, in that order.
+  template <class Visit>
+  void visit_row(std::size_t row, int first, int last, Visit& visit) const {
+    if (!periodic_) {
+      first = std::max(first, 0);
+      last = std::min(last, dims_[0] - 1);
+      if (first <= last) visit(row + first, row + last + 1);
+      return;
+    }
+    for (int x = first; x <= last;) {
+      const int begin = (x + dims_[0]) % dims_[0];
+      int end = begin + 1;
+      for (++x; x <= last && (x + dims_[0]) % dims_[0] == end; ++x) ++end;
+      visit(row + begin, row + end);
+    }
+  }
+
+  // Offsets in {-1,0,1}^(D-1) of the other axes whose last non-zero component is +1, with the
+  // first component varying fastest: the forward rows of the half stencil.
+  static const std::vector<std::array<int, D - 1>>& forward_rows() {
+    static const std::vector<std::array<int, D - 1>> rows = [] {
+      std::vector<std::array<int, D - 1>> out;
+      std::array<int, D - 1> o;
+      for (int n = 0; n < static_cast<int>(std::pow(3, D - 1)); ++n) {
         int rest = n, last_nonzero = 0;
-        for (int d = 0; d < D; ++d) {
+        for (int d = 0; d < D - 1; ++d) {
           o[d] = rest % 3 - 1;
           rest /= 3;
           if (o[d] != 0) last_nonzero = o[d];
@@ -265,7 +295,7 @@ class CellGrid {
       }
       return out;
     }();
-    return offsets;
+    return rows;
   }
 
   Vec<D> lo_ = Vec<D>::Zero();

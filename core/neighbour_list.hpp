@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -78,20 +79,22 @@ void build_half_pairs(const CellGrid<D>& grid, std::span<const Vec<D>> positions
     partner.clear();
     std::size_t count = 0;  // partner[0 .. count) are this chunk's pairs
     Pairs ranges;           // the forward cells' grains
-    for (std::size_t c = cell_begin[t]; c < cell_begin[t + 1]; ++c) {
+    std::array<int, D> q = grid.coords(cell_begin[t]);
+    for (std::size_t c = cell_begin[t]; c < cell_begin[t + 1]; ++c, grid.next_coords(q)) {
       const std::uint32_t begin = grid.start(c), end = grid.start(c + 1);
       if (begin == end) continue;
       ranges.clear();
       std::size_t forward_grains = 0;
-      grid.for_each_forward_neighbour(c, [&](std::size_t other) {
-        if (grid.start(other) == grid.start(other + 1)) return;
-        forward_grains += grid.start(other + 1) - grid.start(other);
-        // Cells side by side along the first axis hold consecutive grains: one run, one loop
+      grid.for_each_forward_run(c, q, [&](std::size_t first, std::size_t last) {
+        const std::uint32_t from = grid.start(first), to = grid.start(last);
+        if (from == to) return;
+        forward_grains += to - from;
+        // Runs that follow each other in memory hold consecutive grains: one range, one loop
         // (the end of each short loop is a likely misprediction).
-        if (!ranges.empty() && ranges.back().second == grid.start(other))
-          ranges.back().second = grid.start(other + 1);
+        if (!ranges.empty() && ranges.back().second == from)
+          ranges.back().second = to;
         else
-          ranges.emplace_back(grid.start(other), grid.start(other + 1));
+          ranges.emplace_back(from, to);
       });
       // The cell's own grains and the next cell's run on into each other too.
       const bool joined = !ranges.empty() && ranges.front().first == end;
