@@ -94,9 +94,10 @@ class DemSimulator final : public Simulator<D> {
   // for the others; returns the largest value either returned.
   template <class Advance, class Coast>
   double force_pass(Advance&& advance, Coast&& coast);
-  // The quiet pairs' classification (soft_dem/quiet_pairs.hpp), where due: after a rebuild, or
-  // once a trusted pair's grain was pushed. force_pass does it first; over ranks step() does it
-  // before, outside the work the cut balances.
+  // The quiet pairs' classification (soft_dem/quiet_pairs.hpp), where due: once a trusted grain
+  // was pushed, after a rebuild that could not keep the trusted grains, or kMaxAge passes after
+  // the last listing. force_pass does it first; over ranks step() does it before, outside the
+  // work the cut balances.
   void classify_quiet_pairs();
   // The tangential history of the touching pairs, by grain ids (indices change in rebuilds).
   std::vector<History> histories() const;
@@ -205,6 +206,12 @@ class DemSimulator final : public Simulator<D> {
   double radius_of(std::span<const double> radius, std::size_t i) const {
     if constexpr (kMono) return radius[0];
     return radius[i];
+  }
+  // The sum of two grains' radii, as QuietPairs asks for it.
+  auto pair_reach() const {
+    return [this, radius = p_.radius()](std::uint32_t i, std::uint32_t j) {
+      return radius_of(radius, i) + radius_of(radius, j);
+    };
   }
   // Calls on_contact(i, j, k, geometry, v_rel) for listed pairs in contact, on_apart(k) for the
   // others (k indexes the pair list).

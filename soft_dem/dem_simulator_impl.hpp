@@ -307,10 +307,8 @@ auto DemSimulator<D, Law, kMono, Space>::verlet_step() -> VerletStep<D, kRotatio
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::classify_quiet_pairs() {
   if (quiet_.fresh()) return;
-  const auto radius = p_.radius();
   quiet_.classify(
-      p_, force_prev_, pairs_, pair_row_, space_, dt_,
-      [&](std::uint32_t i, std::uint32_t j) { return radius_of(radius, i) + radius_of(radius, j); },
+      p_, force_prev_, pairs_, pair_row_, space_, dt_, pair_reach(),
       over_ranks() ? std::span<const std::uint8_t>(owned_) : std::span<const std::uint8_t>());
 }
 
@@ -543,6 +541,7 @@ void DemSimulator<D, Law, kMono, Space>::remove_escaped(std::vector<double>& wei
   }
   if (!weight.empty()) Particles<D>::gather_one(weight, keep, threads_);
   if (plate_) plate_->gather(keep);
+  quiet_.gather(keep, threads_);
   index_of_id_.assign(p_.id(), threads_);
 }
 
@@ -604,6 +603,7 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
   Particles<D>::gather_one(torque_prev_, order, threads_);
   Particles<D>::gather_one(inv_inertia_, order, threads_);
   if (plate_) plate_->gather(order);
+  quiet_.gather(order, threads_);
   if (over_ranks()) {
     Particles<D>::gather_one(owned_, order, threads_);
     whole_cell_.resize(order.size());
@@ -652,7 +652,14 @@ void DemSimulator<D, Law, kMono, Space>::rebuild(std::vector<History> history,
         return i;
       },
       pairs_, threads_);
-  quiet_.expire();
+  // A pass whose look at the trusted grains the ranks have not yet agreed on (velocity Verlet's
+  // last, before a checkpoint) may have pushed one here.
+  if (quiet_.trust_holds() && !pass_pending_)
+    quiet_.relist(
+        p_, pairs_, pair_row_, space_, dt_, pair_reach(),
+        over_ranks() ? std::span<const std::uint8_t>(owned_) : std::span<const std::uint8_t>());
+  else
+    quiet_.expire();
   travelled_ += travel_;
   travel_ = 0.0;
   needs_rebuild_ = false;
@@ -702,6 +709,7 @@ void DemSimulator<D, Law, kMono, Space>::put_histories_and_counters(
 
 template <int D, class Law, bool kMono, class Space>
 void DemSimulator<D, Law, kMono, Space>::restore(const StateArchive& a) {
+  quiet_.expire();  // the grains are replaced
   p_ = get_particles<D>(a, "dem/grains");
   const std::size_t n = p_.size();
   force_prev_ = a.rows<Vec<D>>("dem/force_prev");

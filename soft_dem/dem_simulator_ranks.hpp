@@ -183,6 +183,7 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   Particles<D>::compact_one(inv_inertia_, moves, kept, room);
   Particles<D>::compact_one(owned_, moves, kept, room);
   if (plate_) plate_->compact(moves, kept, room);
+  quiet_.compact(moves, kept, room);
   std::vector<Vec<D>>* shear = plate_ && plate_->keeps_shear() ? &plate_->shear() : nullptr;
   for (const GrainRecord<D>& g : arrived) {
     p_.add(g.id, g.kind, get<D, Vec<D>>(g.x), get<D, Vec<D>>(g.v), g.radius, g.mass);
