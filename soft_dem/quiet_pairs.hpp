@@ -41,7 +41,8 @@ namespace granjet::dem {
 template <int D>
 class QuietPairs {
  public:
-  // Passes a classification serves at most (the drift bound above grows with it).
+  // Passes a listing of the pairs to test serves at most, from a classification or a rebuild's
+  // relisting (the drift bound above grows with it).
   static constexpr int kMaxAge = 128;
   static constexpr int kMargin = 3;
 
