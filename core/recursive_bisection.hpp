@@ -78,6 +78,27 @@ class RecursiveBisection {
     return nodes_[node].part;
   }
 
+  // The part of p (part_of), calling visit(part) first for every other part whose region comes
+  // closer than `reach` to p, as for_each_part_near would. Most points of a part lie farther
+  // than `reach` from every cut on their way down the tree, and no other part is near them (a
+  // part that branches off at a cut lies beyond it): they cost one descent, not a search.
+  template <class Visit>
+  int part_and_others_near(const Vec<D>& p, double reach, Visit&& visit) const {
+    int node = 0;
+    bool alone = true;
+    while (nodes_[node].axis >= 0) {
+      const Node& n = nodes_[node];
+      alone &= !(std::abs(p[n.axis] - n.at) < reach);
+      node = p[n.axis] < n.at ? n.lower : n.upper;
+    }
+    const int own = nodes_[node].part;
+    if (!alone)
+      for_each_part_near(p, reach, [&](int part) {
+        if (part != own) visit(part);
+      });
+    return own;
+  }
+
   // Calls visit(part) for every part whose region comes closer than `reach` to position p, its
   // own included (each once, in the order of the parts). A grain within reach of a grain of
   // another part is within reach of that part's region, so the parts visited for a grain at

@@ -112,22 +112,21 @@ void DemSimulator<D, Law, kMono, Space>::distribute(std::vector<History>& histor
   keep_owned.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     if (!owned_[i]) continue;
-    owner[i] = domain.owner_of(x[i]);
-    bool here = owner[i] == me;
     std::optional<GrainRecord<D>> record;
     const auto send = [&](int r, bool ghost) {
       if (!record) record = record_of(i);
       record->ghost = ghost;
       to[r].push_back(*record);
     };
-    if (!here) send(owner[i], false);
-    domain.for_each_ghost_rank(x[i], owner[i], [&](int r) {
+    bool ghost_here = false;
+    owner[i] = domain.owner_and_ghost_ranks(x[i], [&](int r) {
       if (r == me)
-        here = true;
+        ghost_here = true;
       else
         send(r, true);
     });
-    if (!here) continue;
+    if (owner[i] != me) send(owner[i], false);
+    if (owner[i] != me && !ghost_here) continue;
     keep.push_back(static_cast<std::uint32_t>(i));
     keep_owned.push_back(owner[i] == me);
   }

@@ -96,12 +96,11 @@ class Domain {
   }
   bool partitioned() const { return parts_.has_value(); }
   int owner_of(const Vec<D>& x) const { return parts_->part_of(x); }
-  // Calls visit(rank) for every rank but `owner` that needs a grain at x as a ghost.
+  // The owner of a grain at x, calling visit(rank) first for every other rank that needs it
+  // as a ghost.
   template <class Visit>
-  void for_each_ghost_rank(const Vec<D>& x, int owner, Visit&& visit) const {
-    parts_->for_each_part_near(x, reach_, [&](int part) {
-      if (part != owner) visit(part);
-    });
+  int owner_and_ghost_ranks(const Vec<D>& x, Visit&& visit) const {
+    return parts_->part_and_others_near(x, reach_, visit);
   }
 
   // Sends to[r] to every other rank r (to[rank()] is not sent) and returns what they sent
@@ -126,7 +125,7 @@ class Domain {
     std::vector<std::vector<Listed>> send(ranks()), recv(ranks());
     for (std::uint32_t i = 0; i < x.size(); ++i) {
       if (owned[i])
-        for_each_ghost_rank(x[i], rank(), [&](int r) { send[r].push_back({id[i], i}); });
+        owner_and_ghost_ranks(x[i], [&](int r) { send[r].push_back({id[i], i}); });
       else
         recv[owner_of(x[i])].push_back({id[i], i});
     }

@@ -161,6 +161,39 @@ TEST(RecursiveBisection, PartsNearAGrainHoldEveryPartnerWithinReach) {
   EXPECT_EQ(near, (std::vector<int>{0, 1}));
 }
 
+// One descent gives a point's part and the other parts near it, as part_of and
+// for_each_part_near do: for random points, and for a lattice whose cuts and reaches are whole
+// numbers, where points lie exactly a reach from a cut.
+TEST(RecursiveBisection, OnePlacementGivesThePartAndTheOtherPartsNear) {
+  std::size_t alone = 0, beside_others = 0;  // the points of each kind checked
+  const auto expect_as_search = [&](const RecursiveBisection<3>& rcb, const std::vector<Vec<3>>& at,
+                                    double reach) {
+    for (const Vec<3>& p : at) {
+      std::vector<int> searched, placed;
+      const int own = rcb.part_of(p);
+      rcb.for_each_part_near(p, reach, [&](int part) {
+        if (part != own) searched.push_back(part);
+      });
+      EXPECT_EQ(rcb.part_and_others_near(p, reach, [&](int part) { placed.push_back(part); }), own);
+      EXPECT_EQ(placed, searched) << rcb.parts() << " parts, reach " << reach;
+      (searched.empty() ? alone : beside_others) += 1;
+    }
+  };
+  const std::vector<Vec<3>> x = random_points<3>(2000, 23);
+  std::vector<Vec<3>> lattice;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) lattice.push_back(Vec<3>(i, j, k));
+  for (int parts : {2, 3, 6, 16}) {
+    const RecursiveBisection<3> random(x, std::vector<double>(x.size(), 1.0), parts);
+    expect_as_search(random, random_points<3>(3000, 29), 0.9);
+    const RecursiveBisection<3> layers(lattice, std::vector<double>(lattice.size(), 1.0), parts);
+    for (double reach : {1.0, 2.0}) expect_as_search(layers, lattice, reach);
+  }
+  EXPECT_GT(alone, 1000u);
+  EXPECT_GT(beside_others, 1000u);
+}
+
 // The build over ranks: every point in the part of its position, no part empty, and each part
 // within a point's weight of its share per cut (its cuts fall on histogram edges, not between
 // points, so they come within side / 64^4 of the share).

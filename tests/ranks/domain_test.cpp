@@ -26,9 +26,9 @@ struct Row {
     domain.partition(mine, std::vector<double>(mine.size(), 1.0),
                      std::vector<std::uint8_t>(mine.size(), 1));
     for (int k = 0; k < kGrains; ++k) {
-      const int owner = domain.owner_of(at(k));
       bool ghost = false;
-      domain.for_each_ghost_rank(at(k), owner, [&](int r) { ghost = ghost || r == world.rank(); });
+      const int owner =
+          domain.owner_and_ghost_ranks(at(k), [&](int r) { ghost = ghost || r == world.rank(); });
       if (owner != world.rank() && !ghost) continue;
       x.push_back(at(k));
       id.push_back(k);
